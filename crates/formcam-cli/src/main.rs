@@ -1,0 +1,2 @@
+//! The `formcam` command line.
+fn main() {}

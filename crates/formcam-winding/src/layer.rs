@@ -1,0 +1,455 @@
+//! One layer: the pass, the pattern of circuits and the layer report.
+
+use std::f64::consts::{FRAC_PI_2, TAU};
+
+use formcam_geom::Meridian;
+use serde::Serialize;
+
+use crate::minimax::{bridging_limit, minimax};
+use crate::path::{PassEnd, TraceOptions, trace};
+use crate::pattern::{Pattern, PatternRequest, choose_pattern};
+use crate::shooting::shoot;
+use crate::{MuLaw, MuSegment, PathPoint, WindingError};
+
+/// How the slippage of the path is chosen.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Slippage {
+    /// `mu = 0`: geodesic, `r sin(alpha) = C` constant.
+    Geodesic,
+    /// A given constant `mu`.
+    Constant(f64),
+    /// The constant `mu` that meets both polar openings (shooting); falls back to
+    /// [`Slippage::Minimax`] when that path would bridge a concave part.
+    Auto,
+    /// Piecewise-constant `mu(z)` given by the user.
+    Segments(Vec<MuSegment>),
+    /// The smallest worst-case `|mu|` under the bridging limit (eqs. 5–6).
+    Minimax,
+}
+
+/// Where a pass starts and ends.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Ends {
+    /// A closed mandrel: the pass turns at the polar openings of these radii (mm)
+    /// (design radii; a polar boss may make the meridian end a little wider).
+    Poles {
+        /// Opening at `z_start`, mm.
+        start: f64,
+        /// Opening at `z_end`, mm.
+        end: f64,
+    },
+    /// A tube: the pass runs from `z_start` to `z_end` at the given angle at `z_start`
+    /// and the machine turns it around beyond the ends (a dwell of the mandrel).
+    Tube {
+        /// Winding angle at `z_start`, rad.
+        winding_angle: f64,
+    },
+}
+
+/// Everything that defines a layer besides the mandrel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LayerSpec {
+    /// How the path's slippage is chosen.
+    pub slippage: Slippage,
+    /// Where passes start and end.
+    pub ends: Ends,
+    /// Band width, mm.
+    pub band_width: f64,
+    /// Band thickness, mm.
+    pub band_thickness: f64,
+    /// Overlap of neighbouring bands, fraction of the band width.
+    pub overlap: f64,
+    /// Required pattern number.
+    pub pattern_number: Option<u32>,
+    /// Required skip index.
+    pub skip_index: Option<u32>,
+    /// Least dwell at each turn-around, rad (tubes need room to turn the band).
+    pub dwell_min: f64,
+    /// Largest slippage the band and resin can hold (bounds `auto` and `minimax`).
+    pub mu_limit: f64,
+    /// Points in the sampled pass.
+    pub samples: usize,
+    /// Grid intervals of the minimax search.
+    pub minimax_nodes: usize,
+}
+
+impl Default for LayerSpec {
+    fn default() -> Self {
+        Self {
+            slippage: Slippage::Geodesic,
+            ends: Ends::Poles { start: 0.0, end: 0.0 },
+            band_width: 10.0,
+            band_thickness: 0.5,
+            overlap: 0.0,
+            pattern_number: None,
+            skip_index: None,
+            dwell_min: 0.0,
+            mu_limit: 0.6,
+            samples: 2001,
+            minimax_nodes: 4000,
+        }
+    }
+}
+
+/// Which method produced the pass.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// Clairaut's relation, integrated as a geodesic.
+    Geodesic,
+    /// A given constant or piecewise slippage.
+    GivenSlippage,
+    /// Shooting on a constant slippage.
+    Shooting,
+    /// The minimax direct search of eqs. 5–6.
+    Minimax,
+}
+
+/// What one pass is.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PassSummary {
+    /// Method used.
+    pub method: Method,
+    /// The constant slippage (geodesic, given or shot), or `None` for variable `mu`.
+    pub mu: Option<f64>,
+    /// Worst `|mu|` along the pass.
+    pub mu_max_abs: f64,
+    /// Where the pass starts.
+    pub start: PassEnd,
+    /// Where the pass ends.
+    pub end: PassEnd,
+    /// Path length on the mandrel, mm.
+    pub length_mm: f64,
+    /// Turn angle on the mandrel, rad.
+    pub turn_angle_surface_rad: f64,
+    /// Turn angle added where the path leaves the meridian with `alpha < pi/2` at a
+    /// polar boss (a straight geodesic on the boss face up to the turn), rad.
+    pub turn_angle_boss_rad: f64,
+    /// Shooting: residual of the far boundary condition, mm.
+    pub boundary_residual_mm: Option<f64>,
+    /// Shooting: passes integrated.
+    pub shooting_evaluations: Option<usize>,
+    /// Minimax: `z` intervals (mm) where the bridging limit is active.
+    pub bridging_active: Vec<(f64, f64)>,
+    /// Smallest margin `C - C_b` to the bridging limit on concave parts, mm (None if convex).
+    pub bridging_margin_mm: Option<f64>,
+}
+
+/// The layer report.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LayerReport {
+    /// Winding angle at the equator (the widest parallel), rad.
+    pub alpha_equator_rad: f64,
+    /// `z` of that parallel, mm.
+    pub z_equator: f64,
+    /// Turn angle of one pass, boss included, dwell excluded, rad.
+    pub turn_angle_pass_rad: f64,
+    /// Turn angle of one circuit (two passes), dwell excluded, rad.
+    pub turn_angle_circuit_rad: f64,
+    /// Turn angle of one circuit with the pattern's dwell, rad.
+    pub turn_angle_circuit_with_dwell_rad: f64,
+    /// Dwell per circuit, degrees.
+    pub dwell_deg: f64,
+    /// Dwell at each turn-around, degrees.
+    pub dwell_per_turnaround_deg: f64,
+    /// Fibre length of one pass, mm.
+    pub pass_length_mm: f64,
+    /// Fibre (band) length of one circuit, dwell arcs included, mm.
+    pub circuit_length_mm: f64,
+    /// Band length of the whole layer, mm.
+    pub fibre_length_mm: f64,
+    /// Layer thickness at the equator (two plies, +alpha and -alpha), mm.
+    pub thickness_equator_mm: f64,
+    /// Largest layer thickness along the meridian (capped one band width from the turn), mm.
+    pub thickness_max_mm: f64,
+}
+
+/// A planned layer.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Layer {
+    /// The pass, sampled.
+    #[serde(skip)]
+    pub points: Vec<PathPoint>,
+    /// Band thickness of the layer at each sample, mm.
+    #[serde(skip)]
+    pub thickness: Vec<f64>,
+    /// The pass.
+    pub pass: PassSummary,
+    /// The pattern.
+    pub pattern: Pattern,
+    /// The report.
+    pub report: LayerReport,
+    /// Things the user should know.
+    pub warnings: Vec<String>,
+}
+
+fn check_spec(spec: &LayerSpec) -> Result<(), WindingError> {
+    let pos = |field: &str, v: f64| {
+        if v.is_finite() && v > 0.0 {
+            Ok(())
+        } else {
+            Err(WindingError::field(field, format!("must be a finite number > 0, got {v}")))
+        }
+    };
+    pos("winding.band_width", spec.band_width)?;
+    pos("winding.band_thickness", spec.band_thickness)?;
+    pos("winding.mu_limit", spec.mu_limit)?;
+    if !(spec.dwell_min.is_finite() && spec.dwell_min >= 0.0) {
+        return Err(WindingError::field("winding.dwell_min_deg", "must be >= 0"));
+    }
+    if let Slippage::Constant(m) = spec.slippage {
+        if !m.is_finite() || m.abs() > spec.mu_limit {
+            return Err(WindingError::field(
+                "winding.mu",
+                format!("must be a number with |mu| <= mu_limit ({}), got {m}", spec.mu_limit),
+            ));
+        }
+    }
+    if let Slippage::Segments(segs) = &spec.slippage {
+        for (i, s) in segs.iter().enumerate() {
+            let f = format!("winding.mu_segments[{i}]");
+            if !(s.z_from.is_finite() && s.z_to.is_finite() && s.z_from < s.z_to) {
+                return Err(WindingError::field(f, "needs finite z_from < z_to"));
+            }
+            if !s.mu.is_finite() || s.mu.abs() > spec.mu_limit {
+                return Err(WindingError::field(
+                    format!("{f}.mu"),
+                    format!("must satisfy |mu| <= mu_limit ({})", spec.mu_limit),
+                ));
+            }
+        }
+    }
+    if let Ends::Tube { winding_angle } = spec.ends {
+        if !(winding_angle > 0.0 && winding_angle < FRAC_PI_2) {
+            return Err(WindingError::field(
+                "winding.winding_angle_deg",
+                format!("must be in (0, 90) degrees, got {}", winding_angle.to_degrees()),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Smallest `C - C_b` on concave parts and the first `z` where it is negative.
+fn bridging_margin(m: &impl Meridian, pts: &[PathPoint]) -> (Option<f64>, Option<f64>) {
+    let mut margin: Option<f64> = None;
+    let mut first_bad = None;
+    for p in pts {
+        let j = m.eval(p.z);
+        if j.d2r > 0.0 {
+            let d = p.c - bridging_limit(&j);
+            margin = Some(margin.map_or(d, |m: f64| m.min(d)));
+            if d < -1e-9 * j.r && first_bad.is_none() {
+                first_bad = Some(p.z);
+            }
+        }
+    }
+    (margin, first_bad)
+}
+
+/// Plans one layer on mandrel `m`.
+pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, WindingError> {
+    check_spec(spec)?;
+    let (za, zb) = m.z_range();
+    let mut warnings = Vec::new();
+    let samples = spec.samples.max(2);
+    let mut shot = None;
+    let mut minimax_info = None;
+    let (mut method, law, alpha0) = match (&spec.slippage, spec.ends) {
+        (Slippage::Auto | Slippage::Minimax, Ends::Tube { .. }) => {
+            return Err(WindingError::field(
+                "winding.mu",
+                "\"auto\" and \"minimax\" need a mandrel with polar openings; give a number for a tube",
+            ));
+        }
+        (Slippage::Geodesic, Ends::Poles { start, end }) => {
+            if (start - end).abs() > 1e-9 * start.max(end) {
+                return Err(WindingError::infeasible(
+                    "winding.mu",
+                    format!(
+                        "a geodesic (mu = 0) needs equal polar openings, these are {start} and {end} mm; \
+                         use mu = \"auto\""
+                    ),
+                ));
+            }
+            let a0 = (start / m.r(za)).clamp(-1.0, 1.0).asin();
+            (Method::Geodesic, MuLaw::Constant(0.0), a0)
+        }
+        (Slippage::Geodesic, Ends::Tube { winding_angle }) => {
+            (Method::Geodesic, MuLaw::Constant(0.0), winding_angle)
+        }
+        (Slippage::Constant(mu), Ends::Poles { .. }) => {
+            (Method::GivenSlippage, MuLaw::Constant(*mu), FRAC_PI_2)
+        }
+        (Slippage::Constant(mu), Ends::Tube { winding_angle }) => {
+            (Method::GivenSlippage, MuLaw::Constant(*mu), winding_angle)
+        }
+        (Slippage::Segments(s), Ends::Poles { .. }) => {
+            (Method::GivenSlippage, MuLaw::Segments(s.clone()), FRAC_PI_2)
+        }
+        (Slippage::Segments(s), Ends::Tube { winding_angle }) => {
+            (Method::GivenSlippage, MuLaw::Segments(s.clone()), winding_angle)
+        }
+        (Slippage::Auto, Ends::Poles { .. }) => match shoot(m, spec.mu_limit) {
+            Ok(s) => {
+                shot = Some(s);
+                (Method::Shooting, MuLaw::Constant(s.mu), FRAC_PI_2)
+            }
+            Err(e) => {
+                warnings.push(format!("{e}; the minimax search was used instead"));
+                (Method::Minimax, MuLaw::Constant(0.0), FRAC_PI_2)
+            }
+        },
+        (Slippage::Minimax, Ends::Poles { .. }) => (Method::Minimax, MuLaw::Constant(0.0), FRAC_PI_2),
+    };
+
+    let mut points = Vec::new();
+    let mut start = PassEnd::TurnAround { z: za };
+    let mut end = PassEnd::TurnAround { z: zb };
+    if method != Method::Minimax {
+        let tr = trace(m, &law, alpha0, &TraceOptions::default())?;
+        points = tr.sample(m, &law, samples);
+        if alpha0 < FRAC_PI_2 {
+            start = PassEnd::Exit { z: za, alpha: alpha0 };
+        }
+        end = tr.end;
+        let (_, bad) = bridging_margin(m, &points);
+        if let Some(zbad) = bad {
+            if spec.slippage == Slippage::Auto {
+                warnings.push(format!(
+                    "the constant-mu path bridges the concave meridian at z = {zbad:.3} mm; the minimax \
+                     search was used instead"
+                ));
+                method = Method::Minimax;
+            } else {
+                return Err(WindingError::infeasible(
+                    "winding.mu",
+                    format!(
+                        "the band bridges (lifts off the concave surface) at z = {zbad:.3} mm; \
+                         use mu = \"minimax\""
+                    ),
+                ));
+            }
+        }
+    }
+    if method == Method::Minimax {
+        let mm = minimax(m, spec.minimax_nodes, spec.mu_limit)?;
+        points = mm.points(m);
+        start = PassEnd::TurnAround { z: za };
+        end = PassEnd::TurnAround { z: zb };
+        minimax_info = Some((mm.mu_max, mm.bridging_active));
+        shot = None;
+    }
+    let last = *points.last().ok_or_else(|| WindingError::field("winding.samples", "no points"))?;
+    match (spec.ends, end) {
+        (Ends::Tube { .. }, PassEnd::TurnAround { z }) => {
+            return Err(WindingError::infeasible(
+                "winding.winding_angle_deg",
+                format!(
+                    "the path turns at z = {z:.3} mm before the tube's end ({zb:.3} mm); lower the \
+                     winding angle or the slippage"
+                ),
+            ));
+        }
+        (Ends::Poles { .. }, PassEnd::TurnAround { z }) if z < zb - 1e-6 => {
+            warnings.push(format!(
+                "the pass turns at z = {z:.3} mm, before the far polar opening at {zb:.3} mm"
+            ));
+        }
+        (Ends::Poles { .. }, PassEnd::Exit { alpha, .. }) if alpha < FRAC_PI_2 - 0.2 => {
+            warnings.push(format!(
+                "the pass reaches the far end at a winding angle of {:.2} deg: the band would leave the \
+                 mandrel there",
+                alpha.to_degrees()
+            ));
+        }
+        _ => {}
+    }
+
+    // Turn angles.
+    let surface_turn = last.v;
+    let boss = if matches!(spec.ends, Ends::Poles { .. }) {
+        let mut b = 0.0;
+        if let PassEnd::Exit { alpha, .. } = start {
+            b += FRAC_PI_2 - alpha;
+        }
+        if let PassEnd::Exit { alpha, .. } = end {
+            b += FRAC_PI_2 - alpha;
+        }
+        b
+    } else {
+        0.0
+    };
+    let boss_len = |pe: &PassEnd, r: f64| match pe {
+        PassEnd::Exit { alpha, .. } if matches!(spec.ends, Ends::Poles { .. }) => r * alpha.cos(),
+        _ => 0.0,
+    };
+    let pass_len = last.s + boss_len(&start, m.r(za)) + boss_len(&end, m.r(zb));
+    let turn_pass = surface_turn + boss;
+    let turn_circuit = 2.0 * turn_pass;
+
+    // Equator and pattern.
+    let eq = points.iter().copied().fold(points[0], |a, p| if p.r > a.r { p } else { a });
+    let pattern = choose_pattern(&PatternRequest {
+        band_width: spec.band_width,
+        overlap: spec.overlap,
+        radius: eq.r,
+        alpha: eq.alpha,
+        natural_turn: turn_circuit,
+        dwell_min: 2.0 * spec.dwell_min,
+        pattern_number: spec.pattern_number,
+        skip_index: spec.skip_index,
+    })?;
+    let n = f64::from(pattern.circuits);
+    // Dwell arcs: the band wraps the turn-around parallel while the mandrel dwells.
+    let dwell_arc = 0.5 * pattern.dwell_rad * (last.c.abs() + points[0].c.abs());
+    let circuit_len = 2.0 * pass_len + dwell_arc;
+
+    // Thickness along the meridian: two plies, n bands of width b across a parallel
+    // of circumference 2 pi r at angle alpha; capped one band width from the turn.
+    let r_turn = points.iter().map(|p| p.c).fold(f64::INFINITY, f64::min).max(1e-9);
+    let r_cap = r_turn + spec.band_width;
+    let t_at = |r: f64, alpha: f64| {
+        2.0 * spec.band_thickness * n * spec.band_width / (TAU * r * alpha.cos().max(1e-12))
+    };
+    let c_turn = r_turn;
+    let cap = t_at(r_cap, (c_turn / r_cap).clamp(-1.0, 1.0).asin());
+    let thickness: Vec<f64> = points.iter().map(|p| t_at(p.r, p.alpha).min(cap)).collect();
+    let thickness_max = thickness.iter().copied().fold(0.0, f64::max);
+
+    let (mu_const, mu_max_abs) = match (method, &law) {
+        (Method::Minimax, _) => (None, minimax_info.as_ref().map_or(0.0, |x| x.0)),
+        (_, MuLaw::Constant(mu)) => (Some(*mu), mu.abs()),
+        (_, l) => (None, l.max_abs()),
+    };
+    let (bridging_margin_mm, _) = bridging_margin(m, &points);
+    let pass = PassSummary {
+        method,
+        mu: mu_const,
+        mu_max_abs,
+        start,
+        end,
+        length_mm: last.s,
+        turn_angle_surface_rad: surface_turn,
+        turn_angle_boss_rad: boss,
+        boundary_residual_mm: shot.map(|s| s.residual_mm),
+        shooting_evaluations: shot.map(|s| s.evaluations),
+        bridging_active: minimax_info.map(|x| x.1).unwrap_or_default(),
+        bridging_margin_mm,
+    };
+    let report = LayerReport {
+        alpha_equator_rad: eq.alpha,
+        z_equator: eq.z,
+        turn_angle_pass_rad: turn_pass,
+        turn_angle_circuit_rad: turn_circuit,
+        turn_angle_circuit_with_dwell_rad: turn_circuit + pattern.dwell_rad,
+        dwell_deg: pattern.dwell_rad.to_degrees(),
+        dwell_per_turnaround_deg: 0.5 * pattern.dwell_rad.to_degrees(),
+        pass_length_mm: pass_len,
+        circuit_length_mm: circuit_len,
+        fibre_length_mm: n * circuit_len,
+        thickness_equator_mm: t_at(eq.r, eq.alpha),
+        thickness_max_mm: thickness_max,
+    };
+    Ok(Layer { points, thickness, pass, pattern, report, warnings })
+}

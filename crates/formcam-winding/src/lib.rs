@@ -1,0 +1,25 @@
+//! Filament-winding process of formcam: the winding path on a mandrel (a
+//! surface of revolution), its slippage, the pattern of circuits that covers
+//! the mandrel, and the layer report.
+//!
+//! * [`trace`] integrates a pass in path length through its turn-arounds;
+//! * [`shoot`] finds the constant slippage for `mu = "auto"`;
+//! * [`minimax`] solves the concave-meridian problem (eq. 5–6);
+//! * [`plan_layer`] turns a [`LayerSpec`] into a [`Layer`]: pass, pattern, report.
+
+mod error;
+mod layer;
+pub mod minimax;
+pub mod ode;
+mod path;
+mod pattern;
+mod shooting;
+mod slippage;
+
+pub use error::WindingError;
+pub use layer::{Ends, Layer, LayerReport, LayerSpec, Method, PassSummary, Slippage, plan_layer};
+pub use minimax::{MinimaxPath, minimax};
+pub use path::{PassEnd, PathPoint, Trace, TraceOptions, trace};
+pub use pattern::{Pattern, PatternRequest, choose_pattern};
+pub use shooting::{Shot, shoot};
+pub use slippage::{MuLaw, MuSegment};

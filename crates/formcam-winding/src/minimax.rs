@@ -1,0 +1,252 @@
+//! The concave-meridian problem (eqs. 5–6): the Clairaut function `C(z)` that
+//! joins the two polar openings with the smallest worst-case slippage while the
+//! band stays on the surface.
+//!
+//! Eq. 3 reads `C' = mu B(z, C)` with
+//! `B = C^2/r^2 - r r'' (1 - C^2/r^2) / (1 + r'^2)` (proportional to the band's
+//! normal curvature). `B = 0` exactly on the bridging limit of eq. 6, and `B > 0`
+//! inside the feasible region `C_b(z) <= C <= r(z)`. So a path with
+//! `max |mu| <= M` is a solution of the differential inclusion
+//! `C' in [-M B, +M B]` that stays in the feasible region.
+//!
+//! The direct search: for a trial `M` the set of `C` reachable at `z` from the
+//! start opening is an interval bounded by the two extreme trajectories
+//! (`mu = +M` and `mu = -M`, clipped by `C <= r` and by the bridging limit). The
+//! smallest `M` for which the far opening `C = r(z_end)` is reachable is the
+//! optimum, found by bisection. The path is then built inside the intersection of
+//! the forward and backward reachable tubes, staying geodesic (`C' = 0`) wherever
+//! the tube allows and running at `|mu| = M` where it does not: pieces of constant
+//! slippage joined to pieces that follow the boundary of the feasible region, as
+//! the seed describes.
+
+use formcam_geom::{Jet, Meridian};
+
+use crate::{PathPoint, WindingError};
+
+/// The optimal path of the minimax problem, sampled on a grid in `z`.
+#[derive(Debug, Clone)]
+pub struct MinimaxPath {
+    /// Grid nodes, mm.
+    pub z: Vec<f64>,
+    /// Clairaut function at the nodes, mm.
+    pub c: Vec<f64>,
+    /// Bridging limit `C_b(z)` at the nodes (0 where the meridian is convex), mm.
+    pub c_bridge: Vec<f64>,
+    /// Slippage on each interval `[z_i, z_i+1]` (the last node repeats the last interval).
+    pub mu: Vec<f64>,
+    /// The optimal worst-case slippage `max |mu|`.
+    pub mu_max: f64,
+    /// `z` intervals where the path lies on the bridging limit (within 1e-6 of the radius).
+    pub bridging_active: Vec<(f64, f64)>,
+}
+
+/// Bridging limit `C_b(z)` of eq. 6 (0 where `r'' <= 0`).
+pub fn bridging_limit(j: &Jet) -> f64 {
+    if j.d2r > 0.0 {
+        let q = j.r * j.r * j.r * j.d2r / (1.0 + j.dr * j.dr + j.r * j.d2r);
+        q.max(0.0).sqrt()
+    } else {
+        0.0
+    }
+}
+
+/// `B(z, C)`: `C' = mu B` (eq. 3).
+pub fn b_factor(j: &Jet, c: f64) -> f64 {
+    let u = c * c / (j.r * j.r);
+    u - j.r * j.d2r * (1.0 - u) / (1.0 + j.dr * j.dr)
+}
+
+struct Grid {
+    z: Vec<f64>,
+    node: Vec<Jet>,
+    mid: Vec<Jet>,
+    cb: Vec<f64>,
+}
+
+impl Grid {
+    fn new<M: Meridian>(m: &M, n: usize) -> Self {
+        let (za, zb) = m.z_range();
+        let h = (zb - za) / n as f64;
+        // Uniform nodes plus the meridian's breakpoints, so that no interval
+        // straddles a jump of r''.
+        let mut z: Vec<f64> = (0..=n).map(|i| if i == n { zb } else { za + h * i as f64 }).collect();
+        z.extend(m.breakpoints().into_iter().filter(|b| *b > za && *b < zb));
+        z.sort_by(f64::total_cmp);
+        z.dedup_by(|a, b| (*a - *b).abs() < 1e-3 * h);
+        let node: Vec<Jet> = z.iter().map(|&z| m.eval(z)).collect();
+        let mid: Vec<Jet> = z.windows(2).map(|w| m.eval(0.5 * (w[0] + w[1]))).collect();
+        let cb = node.iter().map(bridging_limit).collect();
+        Self { z, node, mid, cb }
+    }
+
+    fn n(&self) -> usize {
+        self.z.len() - 1
+    }
+
+    /// One RK4 step of `dC/dt = rate B` over interval `i`, with `t = z` forwards
+    /// and `t = -z` backwards (the inclusion is symmetric, so a positive `rate`
+    /// always gives the upper envelope).
+    fn step(&self, i: usize, c: f64, rate: f64, fwd: bool) -> f64 {
+        let h = self.z[i + 1] - self.z[i];
+        let (j0, j1) =
+            if fwd { (&self.node[i], &self.node[i + 1]) } else { (&self.node[i + 1], &self.node[i]) };
+        let jm = &self.mid[i];
+        let f = |j: &Jet, c: f64| rate * b_factor(j, c).max(0.0);
+        let k1 = f(j0, c);
+        let k2 = f(jm, c + 0.5 * h * k1);
+        let k3 = f(jm, c + 0.5 * h * k2);
+        let k4 = f(j1, c + h * k3);
+        c + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+    }
+
+    /// Reachable tube from one end with `|mu| <= m`; `None` when it empties.
+    fn sweep(&self, m: f64, fwd: bool) -> Option<(Vec<f64>, Vec<f64>)> {
+        let n = self.n();
+        let mut lo = vec![0.0; n + 1];
+        let mut hi = vec![0.0; n + 1];
+        let start = if fwd { 0 } else { n };
+        lo[start] = self.node[start].r;
+        hi[start] = self.node[start].r;
+        for k in 0..n {
+            let (i, next) = if fwd { (k, k + 1) } else { (n - 1 - k, n - 1 - k) };
+            let cur = if fwd { k } else { n - k };
+            let up = self.step(i, hi[cur], m, fwd).min(self.node[next].r);
+            let dn = self.step(i, lo[cur], -m, fwd).max(self.cb[next]).max(0.0);
+            if dn > up + 1e-8 * self.node[next].r {
+                return None;
+            }
+            hi[next] = up;
+            lo[next] = dn.min(up);
+        }
+        Some((lo, hi))
+    }
+
+    fn feasible(&self, m: f64) -> bool {
+        let n = self.n();
+        match self.sweep(m, true) {
+            Some((lo, hi)) => {
+                let target = self.node[n].r;
+                hi[n] >= target * (1.0 - 1e-9) && lo[n] <= target * (1.0 + 1e-9)
+            }
+            None => false,
+        }
+    }
+}
+
+/// Solves eqs. 5–6 on `nodes` intervals of `z`; `mu_limit` is the largest slippage
+/// the band can hold (the search gives up beyond it).
+pub fn minimax<M: Meridian>(m: &M, nodes: usize, mu_limit: f64) -> Result<MinimaxPath, WindingError> {
+    let g = Grid::new(m, nodes.max(16));
+    let n = g.n();
+    let mut hi_m = 1e-3;
+    while !g.feasible(hi_m) {
+        hi_m *= 2.0;
+        if hi_m > mu_limit {
+            if g.feasible(mu_limit) {
+                hi_m = mu_limit;
+                break;
+            }
+            return Err(WindingError::infeasible(
+                "winding.mu_limit",
+                format!(
+                    "no band can lie on this meridian with |mu| <= {mu_limit}: every path between the \
+                     polar openings needs more friction or lifts off the concave part (bridging)"
+                ),
+            ));
+        }
+    }
+    let mut lo_m = if g.feasible(0.0) { hi_m = 0.0; 0.0 } else { 0.0 };
+    if hi_m > 0.0 {
+        for _ in 0..60 {
+            let mid = 0.5 * (lo_m + hi_m);
+            if g.feasible(mid) {
+                hi_m = mid;
+            } else {
+                lo_m = mid;
+            }
+            if hi_m - lo_m <= 1e-10 * hi_m {
+                break;
+            }
+        }
+    }
+    let _ = lo_m;
+    // Build the path with a hair of slack so both tubes are non-degenerate.
+    let m_opt = if hi_m > 0.0 { hi_m * (1.0 + 1e-7) } else { 0.0 };
+    let (flo, fhi) = g.sweep(m_opt, true).ok_or_else(|| {
+        WindingError::infeasible("winding.mu", "the minimax path could not be rebuilt (grid too coarse?)")
+    })?;
+    let (blo, bhi) = g.sweep(m_opt, false).ok_or_else(|| {
+        WindingError::infeasible("winding.mu", "the minimax path could not be rebuilt (grid too coarse?)")
+    })?;
+    let mut c = vec![g.node[0].r; n + 1];
+    for i in 0..n {
+        let up = g.step(i, c[i], m_opt, true);
+        let dn = g.step(i, c[i], -m_opt, true);
+        let lo = dn.max(flo[i + 1]).max(blo[i + 1]);
+        let hi = up.min(fhi[i + 1]).min(bhi[i + 1]);
+        c[i + 1] = if lo <= hi { c[i].clamp(lo, hi) } else { 0.5 * (lo + hi) };
+    }
+    c[n] = g.node[n].r;
+    let mut mu: Vec<f64> = (0..n)
+        .map(|i| {
+            let cm = 0.5 * (c[i] + c[i + 1]);
+            let b = b_factor(&g.mid[i], cm);
+            let dc = (c[i + 1] - c[i]) / (g.z[i + 1] - g.z[i]);
+            if b > 0.0 { dc / b } else if dc == 0.0 { 0.0 } else { f64::INFINITY.copysign(dc) }
+        })
+        .collect();
+    mu.push(*mu.last().unwrap_or(&0.0));
+    let mu_max = mu.iter().fold(0.0f64, |a, m| a.max(m.abs()));
+    let rmax = g.node.iter().fold(0.0f64, |a, j| a.max(j.r));
+    let mut bridging_active = Vec::new();
+    let mut open: Option<f64> = None;
+    for i in 0..=n {
+        let on = g.cb[i] > 0.0 && c[i] - g.cb[i] <= 1e-6 * rmax;
+        match (on, open) {
+            (true, None) => open = Some(g.z[i]),
+            (false, Some(a)) => {
+                bridging_active.push((a, g.z[i - 1]));
+                open = None;
+            }
+            _ => {}
+        }
+    }
+    if let Some(a) = open {
+        bridging_active.push((a, g.z[n]));
+    }
+    Ok(MinimaxPath { z: g.z, c, c_bridge: g.cb, mu, mu_max, bridging_active })
+}
+
+impl MinimaxPath {
+    /// The path as points: winding angle from `C`, turn angle and path length by
+    /// quadrature of eq. 1 with the `1/sqrt(r - C)` singularity at the
+    /// turn-arounds integrated exactly on each interval (linear `r - C`).
+    pub fn points<M: Meridian>(&self, m: &M) -> Vec<PathPoint> {
+        clairaut_points(m, &self.z, &self.c, &self.mu)
+    }
+}
+
+/// Path points from a Clairaut function tabulated on a `z` grid.
+pub fn clairaut_points<M: Meridian>(m: &M, z: &[f64], c: &[f64], mu: &[f64]) -> Vec<PathPoint> {
+    let mut out = Vec::with_capacity(z.len());
+    let (mut s, mut v) = (0.0, 0.0);
+    for i in 0..z.len() {
+        let j = m.eval(z[i]);
+        if i > 0 {
+            let jm = m.eval(0.5 * (z[i - 1] + z[i]));
+            let cm = 0.5 * (c[i - 1] + c[i]);
+            let g0 = (m.r(z[i - 1]) - c[i - 1]).max(0.0);
+            let g1 = (j.r - c[i]).max(0.0);
+            let h = z[i] - z[i - 1];
+            let denom = g0.sqrt() + g1.sqrt();
+            let w = if denom > 0.0 { 2.0 * h / denom } else { 0.0 };
+            let q = (1.0 + jm.dr * jm.dr).sqrt();
+            let rc = (jm.r + cm).sqrt();
+            v += cm * q / (jm.r * rc) * w;
+            s += q * jm.r / rc * w;
+        }
+        let alpha = (c[i] / j.r).clamp(-1.0, 1.0).asin();
+        out.push(PathPoint { s, z: z[i], r: j.r, v, alpha, c: c[i], mu: mu.get(i).copied().unwrap_or(0.0) });
+    }
+    out
+}

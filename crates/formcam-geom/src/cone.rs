@@ -35,6 +35,10 @@ impl Meridian for Cone {
     }
     fn eval(&self, z: f64) -> Jet {
         let k = self.slope();
-        Jet { r: self.radius_start + k * z, dr: k, d2r: 0.0 }
+        Jet {
+            r: self.radius_start + k * z,
+            dr: k,
+            d2r: 0.0,
+        }
     }
 }

@@ -10,7 +10,10 @@ pub struct Cylinder {
 impl Cylinder {
     /// A cylinder; both numbers must be finite and positive.
     pub fn new(radius: f64, length: f64) -> Result<Self, GeomError> {
-        Ok(Self { radius: positive("radius", radius)?, length: positive("length", length)? })
+        Ok(Self {
+            radius: positive("radius", radius)?,
+            length: positive("length", length)?,
+        })
     }
 
     /// Radius, mm.
@@ -29,6 +32,10 @@ impl Meridian for Cylinder {
         (0.0, self.length)
     }
     fn eval(&self, _z: f64) -> Jet {
-        Jet { r: self.radius, dr: 0.0, d2r: 0.0 }
+        Jet {
+            r: self.radius,
+            dr: 0.0,
+            d2r: 0.0,
+        }
     }
 }

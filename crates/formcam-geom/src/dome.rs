@@ -24,9 +24,20 @@ pub enum DomeShape {
 
 #[derive(Debug, Clone, PartialEq)]
 enum Profile {
-    Sphere { radius: f64 },
-    Ellipse { a: f64, b: f64 },
-    Torus { radius: f64, knuckle: f64, crown: f64, w_centre: f64, w_joint: f64 },
+    Sphere {
+        radius: f64,
+    },
+    Ellipse {
+        a: f64,
+        b: f64,
+    },
+    Torus {
+        radius: f64,
+        knuckle: f64,
+        crown: f64,
+        w_centre: f64,
+        w_joint: f64,
+    },
     Isotensoid(Isotensoid),
 }
 
@@ -57,16 +68,25 @@ impl Dome {
         }
         let rp = polar_opening;
         let (profile, height, joints) = match shape {
-            DomeShape::Hemisphere => {
-                (Profile::Sphere { radius }, (radius * radius - rp * rp).sqrt(), vec![])
-            }
+            DomeShape::Hemisphere => (
+                Profile::Sphere { radius },
+                (radius * radius - rp * rp).sqrt(),
+                vec![],
+            ),
             DomeShape::Ellipsoid { axis_ratio } => {
                 let k = positive("axis_ratio", axis_ratio)?;
                 let b = k * radius;
                 let q = rp / radius;
-                (Profile::Ellipse { a: radius, b }, b * (1.0 - q * q).sqrt(), vec![])
+                (
+                    Profile::Ellipse { a: radius, b },
+                    b * (1.0 - q * q).sqrt(),
+                    vec![],
+                )
             }
-            DomeShape::Torispherical { crown_radius, knuckle_radius } => {
+            DomeShape::Torispherical {
+                crown_radius,
+                knuckle_radius,
+            } => {
                 let crown = positive("crown_radius", crown_radius)?;
                 let knuckle = positive("knuckle_radius", knuckle_radius)?;
                 if knuckle >= radius {
@@ -95,7 +115,17 @@ impl Dome {
                     (knuckle * knuckle - (rp - a).powi(2)).sqrt()
                 };
                 let joints = if rp < r_joint { vec![w_joint] } else { vec![] };
-                (Profile::Torus { radius, knuckle, crown, w_centre, w_joint }, height, joints)
+                (
+                    Profile::Torus {
+                        radius,
+                        knuckle,
+                        crown,
+                        w_centre,
+                        w_joint,
+                    },
+                    height,
+                    joints,
+                )
             }
             DomeShape::Isotensoid => {
                 let iso = Isotensoid::new(radius, rp)?;
@@ -103,7 +133,13 @@ impl Dome {
                 (Profile::Isotensoid(iso), h, vec![])
             }
         };
-        Ok(Self { profile, radius, polar_opening, height, joints })
+        Ok(Self {
+            profile,
+            radius,
+            polar_opening,
+            height,
+            joints,
+        })
     }
 
     /// Equator radius, mm.
@@ -144,7 +180,13 @@ impl Dome {
                 let d2r = -a / (b * b * s * s * s);
                 Jet { r, dr, d2r }
             }
-            Profile::Torus { radius, knuckle, crown, w_centre, w_joint } => {
+            Profile::Torus {
+                radius,
+                knuckle,
+                crown,
+                w_centre,
+                w_joint,
+            } => {
                 if w <= *w_joint {
                     circle(*knuckle, 0.0, w, radius - knuckle)
                 } else {
@@ -160,7 +202,11 @@ impl Dome {
 fn circle(rho: f64, w0: f64, w: f64, r0: f64) -> Jet {
     let d = w - w0;
     let q = (rho * rho - d * d).sqrt();
-    Jet { r: r0 + q, dr: -d / q, d2r: -rho * rho / (q * q * q) }
+    Jet {
+        r: r0 + q,
+        dr: -d / q,
+        d2r: -rho * rho / (q * q * q),
+    }
 }
 
 #[cfg(test)]
@@ -177,7 +223,10 @@ mod tests {
                 continue;
             }
             assert!((b.dr - (c.r - a.r) / (2.0 * e)).abs() < 1e-6, "dr at {w}");
-            assert!((b.d2r - (c.dr - a.dr) / (2.0 * e)).abs() < 1e-5, "d2r at {w}");
+            assert!(
+                (b.d2r - (c.dr - a.dr) / (2.0 * e)).abs() < 1e-5,
+                "d2r at {w}"
+            );
         }
     }
 
@@ -186,13 +235,20 @@ mod tests {
         for shape in [
             DomeShape::Hemisphere,
             DomeShape::Ellipsoid { axis_ratio: 0.6 },
-            DomeShape::Torispherical { crown_radius: 160.0, knuckle_radius: 25.0 },
+            DomeShape::Torispherical {
+                crown_radius: 160.0,
+                knuckle_radius: 25.0,
+            },
         ] {
             let d = Dome::new(shape, 100.0, 30.0).unwrap();
             let j0 = d.eval_w(0.0);
             assert!((j0.r - 100.0).abs() < 1e-12, "{shape:?}");
             assert!(j0.dr.abs() < 1e-12);
-            assert!((d.end_radius() - 30.0).abs() < 1e-9, "{shape:?} {}", d.end_radius());
+            assert!(
+                (d.end_radius() - 30.0).abs() < 1e-9,
+                "{shape:?} {}",
+                d.end_radius()
+            );
             check_derivatives(&d);
         }
     }
@@ -200,7 +256,10 @@ mod tests {
     #[test]
     fn torispherical_is_c1_at_joint() {
         let d = Dome::new(
-            DomeShape::Torispherical { crown_radius: 160.0, knuckle_radius: 25.0 },
+            DomeShape::Torispherical {
+                crown_radius: 160.0,
+                knuckle_radius: 25.0,
+            },
             100.0,
             30.0,
         )
@@ -216,20 +275,32 @@ mod tests {
     fn rejects_bad_input() {
         assert!(matches!(
             Dome::new(DomeShape::Hemisphere, 100.0, 100.0),
-            Err(GeomError::OutOfRange { field: "polar_opening", .. })
+            Err(GeomError::OutOfRange {
+                field: "polar_opening",
+                ..
+            })
         ));
         assert!(matches!(
             Dome::new(DomeShape::Hemisphere, -1.0, 0.5),
-            Err(GeomError::NotPositive { field: "radius", .. })
+            Err(GeomError::NotPositive {
+                field: "radius",
+                ..
+            })
         ));
         assert!(matches!(
             Dome::new(DomeShape::Hemisphere, f64::NAN, 0.5),
-            Err(GeomError::NotFinite { field: "radius", .. })
+            Err(GeomError::NotFinite {
+                field: "radius",
+                ..
+            })
         ));
         assert!(Dome::new(DomeShape::Ellipsoid { axis_ratio: 0.0 }, 100.0, 10.0).is_err());
         assert!(
             Dome::new(
-                DomeShape::Torispherical { crown_radius: 90.0, knuckle_radius: 10.0 },
+                DomeShape::Torispherical {
+                    crown_radius: 90.0,
+                    knuckle_radius: 10.0
+                },
                 100.0,
                 10.0
             )

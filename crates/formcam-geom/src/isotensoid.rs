@@ -173,12 +173,24 @@ impl Isotensoid {
             (2.0 * h - w, true)
         } else if w.is_finite() {
             let m = w.rem_euclid(2.0 * h);
-            if m <= h { (m, false) } else { (2.0 * h - m, true) }
+            if m <= h {
+                (m, false)
+            } else {
+                (2.0 * h - m, true)
+            }
         } else {
-            return Jet { r: f64::NAN, dr: f64::NAN, d2r: f64::NAN };
+            return Jet {
+                r: f64::NAN,
+                dr: f64::NAN,
+                d2r: f64::NAN,
+            };
         };
         let jet = self.jet_at(self.theta_at(local.clamp(0.0, h)));
-        if flip { Jet { dr: -jet.dr, ..jet } } else { jet }
+        if flip {
+            Jet { dr: -jet.dr, ..jet }
+        } else {
+            jet
+        }
     }
 
     /// `sin(theta)` and `cos(theta)` on `[0, pi/2]`, with `FRAC_PI_2` taken as
@@ -189,7 +201,11 @@ impl Isotensoid {
 
     /// `u = rho^2` at `theta`, accurate near both ends.
     fn u_at(&self, s: f64, co: f64) -> f64 {
-        if s * s > 0.5 { 1.0 - self.c * co * co } else { self.u_s + self.c * s * s }
+        if s * s > 0.5 {
+            1.0 - self.c * co * co
+        } else {
+            self.u_s + self.c * s * s
+        }
     }
 
     /// The meridian at parameter `theta`.
@@ -201,7 +217,11 @@ impl Isotensoid {
         // dr/dw = (dr/dtheta) / (dw/dtheta); r'' = -S'(r)/S^3 simplified.
         let dr = -self.c * s * co * v.sqrt() / (u * su);
         let d2r = -(2.0 * u - 3.0 * self.q) / (self.radius * (1.0 - self.q) * u * u * u * su);
-        Jet { r: self.radius * su, dr, d2r }
+        Jet {
+            r: self.radius * su,
+            dr,
+            d2r,
+        }
     }
 
     /// `g(theta) = u / sqrt(u - u_m)`, so that `dw/dtheta = -R g`, and `dg/dtheta`.
@@ -229,7 +249,12 @@ impl Isotensoid {
     fn node(&self, theta: f64, w: f64) -> Node {
         let (g, dg) = self.g(theta);
         let rg = self.radius * g;
-        Node { w, theta, d1: -1.0 / rg, d2: -dg / (rg * rg * g) }
+        Node {
+            w,
+            theta,
+            d1: -1.0 / rg,
+            d2: -dg / (rg * rg * g),
+        }
     }
 
     /// Tabulates `theta(w)` on panels refined until the quintic Hermite
@@ -238,7 +263,13 @@ impl Isotensoid {
         let scale0 = self.u_s.sqrt();
         let n0 = INITIAL_PANELS;
         let mut stack: Vec<(f64, f64, u32)> = (0..n0)
-            .map(|k| (FRAC_PI_2 * f64::from(k) / f64::from(n0), FRAC_PI_2 * f64::from(k + 1) / f64::from(n0), 0))
+            .map(|k| {
+                (
+                    FRAC_PI_2 * f64::from(k) / f64::from(n0),
+                    FRAC_PI_2 * f64::from(k + 1) / f64::from(n0),
+                    0,
+                )
+            })
             .collect();
         let mut panels: Vec<(f64, f64, f64)> = Vec::new();
         while let Some((a, b, depth)) = stack.pop() {
@@ -252,7 +283,7 @@ impl Isotensoid {
             let na = self.node(a, halves);
             let theta_m = interpolate(&nb, &na, i_mb);
             let herm_ok = (theta_m - m).abs() <= THETA_TOL * (scale0 + m);
-            if (quad_ok && herm_ok) || depth >= MAX_DEPTH || !(halves > 0.0) {
+            if (quad_ok && herm_ok) || depth >= MAX_DEPTH || halves.is_nan() || halves <= 0.0 {
                 panels.push((a, b, halves));
             } else {
                 stack.push((a, m, depth + 1));
@@ -275,7 +306,11 @@ impl Isotensoid {
     /// The parameter at `w` in `[0, height]`.
     fn theta_at(&self, w: f64) -> f64 {
         let n = self.nodes.len();
-        let i = self.nodes.partition_point(|node| node.w <= w).saturating_sub(1).min(n - 2);
+        let i = self
+            .nodes
+            .partition_point(|node| node.w <= w)
+            .saturating_sub(1)
+            .min(n - 2);
         let (a, b) = (&self.nodes[i], &self.nodes[i + 1]);
         interpolate(a, b, w).clamp(0.0, FRAC_PI_2)
     }
@@ -284,7 +319,7 @@ impl Isotensoid {
 /// Quintic Hermite interpolation of `theta` between nodes `a` and `b` at `w`.
 fn interpolate(a: &Node, b: &Node, w: f64) -> f64 {
     let h = b.w - a.w;
-    if !(h > 0.0) {
+    if h.is_nan() || h <= 0.0 {
         return a.theta;
     }
     let t = (w - a.w) / h;
@@ -307,7 +342,13 @@ mod tests {
     use crate::{Dome, DomeShape};
 
     /// Cases (R, r0) covering small, usual and large openings.
-    const CASES: [(f64, f64); 5] = [(100.0, 10.0), (100.0, 30.0), (150.0, 45.0), (100.0, 80.0), (100.0, 2.0)];
+    const CASES: [(f64, f64); 5] = [
+        (100.0, 10.0),
+        (100.0, 30.0),
+        (150.0, 45.0),
+        (100.0, 80.0),
+        (100.0, 2.0),
+    ];
 
     /// `rho^2 (1 + rho^2) - rho0^2 (1 + rho^2 + rho^4)`.
     fn end_poly(rho: f64, rho0: f64) -> f64 {
@@ -320,7 +361,11 @@ mod tests {
         let (mut lo, mut hi) = (rho0, 1.0);
         for _ in 0..200 {
             let mid = 0.5 * (lo + hi);
-            if end_poly(mid, rho0) < 0.0 { lo = mid } else { hi = mid }
+            if end_poly(mid, rho0) < 0.0 {
+                lo = mid
+            } else {
+                hi = mid
+            }
         }
         0.5 * (lo + hi)
     }
@@ -332,7 +377,11 @@ mod tests {
             .map(|k| {
                 let mid = a + (k as f64 + 0.5) * step;
                 let half = 0.5 * step;
-                half * GL_X.iter().zip(GL_W).map(|(x, w)| w * (f(mid - half * x) + f(mid + half * x))).sum::<f64>()
+                half * GL_X
+                    .iter()
+                    .zip(GL_W)
+                    .map(|(x, w)| w * (f(mid - half * x) + f(mid + half * x)))
+                    .sum::<f64>()
             })
             .sum()
     }
@@ -349,7 +398,12 @@ mod tests {
         let integrand = |phi: f64| {
             let d = (1.0 - rs) * phi.sin().powi(2);
             let p = rs + d;
-            let f_over_d = (1.0 - q) * (2.0 * rs + 4.0 * rs.powi(3) + d * (1.0 + 6.0 * rs * rs) + 4.0 * rs * d * d + d.powi(3));
+            let f_over_d = (1.0 - q)
+                * (2.0 * rs
+                    + 4.0 * rs.powi(3)
+                    + d * (1.0 + 6.0 * rs * rs)
+                    + 4.0 * rs * d * d
+                    + d.powi(3));
             2.0 * radius * p.powi(3) * k / ((1.0 + p) * f_over_d).sqrt()
         };
         gauss(integrand, phi0, FRAC_PI_2, 400)
@@ -370,7 +424,11 @@ mod tests {
     #[test]
     fn gauss_legendre_rule_is_exact_to_degree_15() {
         for k in 0..16 {
-            let exact = if k % 2 == 0 { 2.0 / (k as f64 + 1.0) } else { 0.0 };
+            let exact = if k % 2 == 0 {
+                2.0 / (k as f64 + 1.0)
+            } else {
+                0.0
+            };
             let got = gauss(|x| x.powi(k), -1.0, 1.0, 1);
             assert!((got - exact).abs() < 1e-15, "x^{k}: {got} vs {exact}");
         }
@@ -385,7 +443,11 @@ mod tests {
             assert_eq!(j.r, radius);
             assert_eq!(j.dr, 0.0);
             let d2r = -(2.0 - 3.0 * q) / ((1.0 - q) * radius);
-            assert!((j.d2r - d2r).abs() < 1e-13 * d2r.abs(), "{} vs {d2r}", j.d2r);
+            assert!(
+                (j.d2r - d2r).abs() < 1e-13 * d2r.abs(),
+                "{} vs {d2r}",
+                j.d2r
+            );
         }
     }
 
@@ -396,7 +458,11 @@ mod tests {
             let rho0 = r0 / radius;
             let rs = iso.end_radius() / radius;
             assert!(rs > rho0);
-            assert!(end_poly(rs, rho0).abs() < 1e-12, "residual {}", end_poly(rs, rho0));
+            assert!(
+                end_poly(rs, rho0).abs() < 1e-12,
+                "residual {}",
+                end_poly(rs, rho0)
+            );
             assert!((rs - rho_s_bisect(rho0)).abs() < 1e-14);
             assert!((s_of_r(radius, r0, iso.end_radius()) - 1.0).abs() < 1e-9);
             let j = iso.eval_w(iso.height());
@@ -413,11 +479,19 @@ mod tests {
         for (radius, r0) in CASES {
             let iso = Isotensoid::new(radius, r0).unwrap();
             let h = closed_form_w(radius, r0, 0.0);
-            assert!((iso.height() - h).abs() < 1e-11 * h, "{radius} {r0}: {} vs {h}", iso.height());
+            assert!(
+                (iso.height() - h).abs() < 1e-11 * h,
+                "{radius} {r0}: {} vs {h}",
+                iso.height()
+            );
         }
         // Known proportions: a small opening gives a dome about 0.6 R deep.
         let iso = Isotensoid::new(100.0, 10.0).unwrap();
-        assert!(iso.height() > 55.0 && iso.height() < 65.0, "{}", iso.height());
+        assert!(
+            iso.height() > 55.0 && iso.height() < 65.0,
+            "{}",
+            iso.height()
+        );
     }
 
     #[test]
@@ -433,7 +507,10 @@ mod tests {
                 // Relative error in r, allowing for the rounding of w (slope times 1e-14 h).
                 let err = (j.r - radius * rho).abs();
                 let tol = 1e-12 * radius * rho + 1e-14 * iso.height() * j.dr.abs();
-                assert!(err < tol, "{radius} {r0} rho {rho}: err {err:e} tol {tol:e}");
+                assert!(
+                    err < tol,
+                    "{radius} {r0} rho {rho}: err {err:e} tol {tol:e}"
+                );
             }
         }
     }
@@ -452,8 +529,16 @@ mod tests {
                 let (a, b, c) = (iso.eval_w(w - e), iso.eval_w(w), iso.eval_w(w + e));
                 let dr_fd = (c.r - a.r) / (2.0 * e);
                 let d2r_fd = (c.dr - a.dr) / (2.0 * e);
-                assert!((b.dr - dr_fd).abs() < 1e-6 * (1.0 + b.dr.abs()), "{r0} w {w}: {} vs {dr_fd}", b.dr);
-                assert!((b.d2r - d2r_fd).abs() < 1e-6 * b.d2r.abs().max(1.0 / radius), "{r0} w {w}: {} vs {d2r_fd}", b.d2r);
+                assert!(
+                    (b.dr - dr_fd).abs() < 1e-6 * (1.0 + b.dr.abs()),
+                    "{r0} w {w}: {} vs {dr_fd}",
+                    b.dr
+                );
+                assert!(
+                    (b.d2r - d2r_fd).abs() < 1e-6 * b.d2r.abs().max(1.0 / radius),
+                    "{r0} w {w}: {} vs {d2r_fd}",
+                    b.d2r
+                );
                 assert!(b.dr <= 0.0);
             }
         }
@@ -472,11 +557,17 @@ mod tests {
                 // The test's own S(r) loses digits to rho^2 - rho0^2 near the end.
                 let cond = j.r * j.r / (j.r * j.r - r0 * r0);
                 let tol = (1e-10 + 1e-15 * cond) * (1.0 + slope2);
-                assert!((j.dr * j.dr - slope2).abs() < tol, "{r0} w {w}: {} vs {slope2}", j.dr * j.dr);
+                assert!(
+                    (j.dr * j.dr - slope2).abs() < tol,
+                    "{r0} w {w}: {} vs {slope2}",
+                    j.dr * j.dr
+                );
                 // S'(r) by Richardson-extrapolated central differences, step
                 // relative to r - r0 (S varies on that scale near the end).
                 let e = 1e-2 * (j.r - r0);
-                let central = |e: f64| (s_of_r(radius, r0, j.r + e) - s_of_r(radius, r0, j.r - e)) / (2.0 * e);
+                let central = |e: f64| {
+                    (s_of_r(radius, r0, j.r + e) - s_of_r(radius, r0, j.r - e)) / (2.0 * e)
+                };
                 let ds = (4.0 * central(e) - central(2.0 * e)) / 3.0;
                 let d2r = -ds / s.powi(3);
                 let tol = (1e-7 + 1e-15 * j.r / e) * j.d2r.abs().max(1.0 / radius);
@@ -499,7 +590,11 @@ mod tests {
                 let tan2 = sin_a * sin_a / cos2;
                 let slope2 = 1.0 + j.dr * j.dr;
                 let ratio = -j.r * j.d2r / slope2;
-                assert!((ratio - (2.0 - tan2)).abs() < 1e-8 * (1.0 + tan2), "{r0} w {w}: {ratio} vs {}", 2.0 - tan2);
+                assert!(
+                    (ratio - (2.0 - tan2)).abs() < 1e-8 * (1.0 + tan2),
+                    "{r0} w {w}: {ratio} vs {}",
+                    2.0 - tan2
+                );
                 let k_m = -j.d2r / slope2.powf(1.5);
                 let k_p = 1.0 / (j.r * slope2.sqrt());
                 let k_n = cos2 * k_m + sin_a * sin_a * k_p;
@@ -514,11 +609,19 @@ mod tests {
         let h = iso.height();
         for w in [0.1, 5.0, 0.5 * h, h - 1.0, h - 1e-3] {
             let j = iso.eval_w(w);
-            for (m, flip) in [(-w, true), (2.0 * h - w, true), (2.0 * h + w, false), (-2.0 * h - w, true)] {
+            for (m, flip) in [
+                (-w, true),
+                (2.0 * h - w, true),
+                (2.0 * h + w, false),
+                (-2.0 * h - w, true),
+            ] {
                 let k = iso.eval_w(m);
                 assert!((k.r - j.r).abs() < 1e-9, "w {w} -> {m}");
                 let sign = if flip { -1.0 } else { 1.0 };
-                assert!((k.dr - sign * j.dr).abs() < 1e-7 * (1.0 + j.dr.abs()), "w {w} -> {m}");
+                assert!(
+                    (k.dr - sign * j.dr).abs() < 1e-7 * (1.0 + j.dr.abs()),
+                    "w {w} -> {m}"
+                );
                 assert!((k.d2r - j.d2r).abs() < 1e-7 * j.d2r.abs(), "w {w} -> {m}");
             }
         }
@@ -533,7 +636,11 @@ mod tests {
             let iso = Isotensoid::new(radius, r0).unwrap();
             let n = iso.nodes.len();
             assert!(n < 2000, "{r0}: {n} nodes");
-            assert!(iso.nodes.windows(2).all(|p| p[0].w < p[1].w && p[0].theta > p[1].theta));
+            assert!(
+                iso.nodes
+                    .windows(2)
+                    .all(|p| p[0].w < p[1].w && p[0].theta > p[1].theta)
+            );
         }
     }
 
@@ -548,26 +655,46 @@ mod tests {
     #[test]
     fn rejects_bad_input() {
         let field_of = |e: GeomError| match e {
-            GeomError::NotFinite { field, .. } | GeomError::NotPositive { field, .. } | GeomError::OutOfRange { field, .. } => field,
+            GeomError::NotFinite { field, .. }
+            | GeomError::NotPositive { field, .. }
+            | GeomError::OutOfRange { field, .. } => field,
             other => panic!("unexpected {other:?}"),
         };
-        assert_eq!(field_of(Isotensoid::new(f64::NAN, 10.0).unwrap_err()), "radius");
+        assert_eq!(
+            field_of(Isotensoid::new(f64::NAN, 10.0).unwrap_err()),
+            "radius"
+        );
         assert_eq!(field_of(Isotensoid::new(-5.0, 10.0).unwrap_err()), "radius");
-        assert_eq!(field_of(Isotensoid::new(100.0, f64::INFINITY).unwrap_err()), "polar_opening");
-        assert_eq!(field_of(Isotensoid::new(100.0, 0.0).unwrap_err()), "polar_opening");
+        assert_eq!(
+            field_of(Isotensoid::new(100.0, f64::INFINITY).unwrap_err()),
+            "polar_opening"
+        );
+        assert_eq!(
+            field_of(Isotensoid::new(100.0, 0.0).unwrap_err()),
+            "polar_opening"
+        );
         assert!(matches!(
             Isotensoid::new(100.0, 100.0),
-            Err(GeomError::OutOfRange { field: "polar_opening", .. })
+            Err(GeomError::OutOfRange {
+                field: "polar_opening",
+                ..
+            })
         ));
         // Beyond radius * sqrt(2/3) = 81.65 no dome exists.
         assert!(matches!(
             Isotensoid::new(100.0, 82.0),
-            Err(GeomError::OutOfRange { field: "polar_opening", .. })
+            Err(GeomError::OutOfRange {
+                field: "polar_opening",
+                ..
+            })
         ));
         assert!(Isotensoid::new(100.0, 81.6).is_ok());
         assert!(matches!(
             Isotensoid::new(100.0, 0.05),
-            Err(GeomError::OutOfRange { field: "polar_opening", .. })
+            Err(GeomError::OutOfRange {
+                field: "polar_opening",
+                ..
+            })
         ));
         assert!(Isotensoid::new(100.0, 0.1).is_ok());
     }

@@ -13,11 +13,20 @@ impl<M: Meridian> Meridian for Mirrored<M> {
     fn eval(&self, z: f64) -> Jet {
         let (a, b) = self.0.z_range();
         let j = self.0.eval(a + b - z);
-        Jet { r: j.r, dr: -j.dr, d2r: j.d2r }
+        Jet {
+            r: j.r,
+            dr: -j.dr,
+            d2r: j.d2r,
+        }
     }
     fn breakpoints(&self) -> Vec<f64> {
         let (a, b) = self.0.z_range();
-        let mut v: Vec<f64> = self.0.breakpoints().into_iter().map(|z| a + b - z).collect();
+        let mut v: Vec<f64> = self
+            .0
+            .breakpoints()
+            .into_iter()
+            .map(|z| a + b - z)
+            .collect();
         v.reverse();
         v
     }

@@ -37,7 +37,10 @@ impl CubicSpline {
     pub fn fit(x: &[f64], y: &[f64], smoothing: f64) -> Result<Self, GeomError> {
         validate(x, y)?;
         if !smoothing.is_finite() {
-            return Err(GeomError::NotFinite { field: "smoothing", value: smoothing });
+            return Err(GeomError::NotFinite {
+                field: "smoothing",
+                value: smoothing,
+            });
         }
         if smoothing < 0.0 {
             return Err(GeomError::OutOfRange {
@@ -59,7 +62,11 @@ impl CubicSpline {
                 reason: "cannot fit a spline to these points (numerically singular)".to_string(),
             });
         };
-        Ok(Self { x: x.to_vec(), y: values, m })
+        Ok(Self {
+            x: x.to_vec(),
+            y: values,
+            m,
+        })
     }
 
     /// The knots `x_i`.
@@ -86,7 +93,11 @@ impl CubicSpline {
     /// Value, first and second derivative at `x`.
     pub fn eval(&self, x: f64) -> (f64, f64, f64) {
         let n = self.x.len();
-        let i = self.x.partition_point(|&k| k <= x).saturating_sub(1).min(n - 2);
+        let i = self
+            .x
+            .partition_point(|&k| k <= x)
+            .saturating_sub(1)
+            .min(n - 2);
         self.piece(i, x)
     }
 
@@ -118,18 +129,30 @@ fn validate(x: &[f64], y: &[f64]) -> Result<(), GeomError> {
     for (i, (&xi, &yi)) in x.iter().zip(y).enumerate() {
         let row = i + 1;
         if !xi.is_finite() {
-            return Err(GeomError::Table { row, reason: format!("z is not a finite number: {xi}") });
+            return Err(GeomError::Table {
+                row,
+                reason: format!("z is not a finite number: {xi}"),
+            });
         }
         if !yi.is_finite() {
-            return Err(GeomError::Table { row, reason: format!("value is not a finite number: {yi}") });
+            return Err(GeomError::Table {
+                row,
+                reason: format!("value is not a finite number: {yi}"),
+            });
         }
         if i > 0 {
             let prev = x[i - 1];
             if xi == prev {
-                return Err(GeomError::Table { row, reason: format!("duplicate z {xi}") });
+                return Err(GeomError::Table {
+                    row,
+                    reason: format!("duplicate z {xi}"),
+                });
             }
             if xi < prev {
-                return Err(GeomError::Table { row, reason: format!("z not increasing: {xi} after {prev}") });
+                return Err(GeomError::Table {
+                    row,
+                    reason: format!("z not increasing: {xi} after {prev}"),
+                });
             }
         }
     }
@@ -223,14 +246,28 @@ fn solve_tridiagonal(sub: &[f64], diag: &[f64], sup: &[f64], rhs: &[f64]) -> Opt
     let mut u = vec![[0.0; 4]; n];
     let mut cur = [diag[0], sup.first().copied().unwrap_or(0.0), 0.0, rhs[0]];
     for i in 0..n - 1 {
-        let next = [sub[i], diag[i + 1], sup.get(i + 1).copied().unwrap_or(0.0), rhs[i + 1]];
-        let (piv, other) = if next[0].abs() > cur[0].abs() { (next, cur) } else { (cur, next) };
+        let next = [
+            sub[i],
+            diag[i + 1],
+            sup.get(i + 1).copied().unwrap_or(0.0),
+            rhs[i + 1],
+        ];
+        let (piv, other) = if next[0].abs() > cur[0].abs() {
+            (next, cur)
+        } else {
+            (cur, next)
+        };
         if piv[0] == 0.0 {
             return None;
         }
         let f = other[0] / piv[0];
         u[i] = piv;
-        cur = [other[1] - f * piv[1], other[2] - f * piv[2], 0.0, other[3] - f * piv[3]];
+        cur = [
+            other[1] - f * piv[1],
+            other[2] - f * piv[2],
+            0.0,
+            other[3] - f * piv[3],
+        ];
     }
     u[n - 1] = cur;
     let mut x = vec![0.0; n];
@@ -269,7 +306,7 @@ fn solve_pentadiagonal_spd(a0: &[f64], a1: &[f64], a2: &[f64], rhs: &[f64]) -> O
         if i >= 2 {
             di -= l2[i - 2] * l2[i - 2] * d[i - 2];
         }
-        if !(di > 0.0) {
+        if di.is_nan() || di <= 0.0 {
             return None;
         }
         d[i] = di;
@@ -318,8 +355,14 @@ mod tests {
 
     /// A wiggly test function and noise-like data.
     fn wiggly(n: usize) -> (Vec<f64>, Vec<f64>) {
-        let x: Vec<f64> = (0..n).map(|i| i as f64 * 0.5 + 0.1 * (i as f64 * 1.7).sin()).collect();
-        let y = x.iter().enumerate().map(|(i, v)| v.sin() + 0.05 * ((i * 7919) % 13) as f64 / 13.0).collect();
+        let x: Vec<f64> = (0..n)
+            .map(|i| i as f64 * 0.5 + 0.1 * (i as f64 * 1.7).sin())
+            .collect();
+        let y = x
+            .iter()
+            .enumerate()
+            .map(|(i, v)| v.sin() + 0.05 * ((i * 7919) % 13) as f64 / 13.0)
+            .collect();
         (x, y)
     }
 
@@ -347,8 +390,8 @@ mod tests {
         let (x, y) = wiggly(12);
         for smoothing in [0.0, 0.3] {
             let s = CubicSpline::fit(&x, &y, smoothing).unwrap();
-            for i in 1..x.len() - 1 {
-                let (l, r) = (s.piece(i - 1, x[i]), s.piece(i, x[i]));
+            for (i, &xi) in x.iter().enumerate().take(x.len() - 1).skip(1) {
+                let (l, r) = (s.piece(i - 1, xi), s.piece(i, xi));
                 assert!((l.0 - r.0).abs() < 1e-12, "value at knot {i}");
                 assert!((l.1 - r.1).abs() < 1e-12, "slope at knot {i}");
                 assert!((l.2 - r.2).abs() < 1e-12, "curvature at knot {i}");
@@ -376,11 +419,21 @@ mod tests {
         for lambda in [1e-3, 0.1, 2.0, 50.0] {
             let s = CubicSpline::fit(&x, &y, lambda).unwrap();
             let n = x.len();
-            let third = |i: usize| if i < n - 1 { (s.m[i + 1] - s.m[i]) / (x[i + 1] - x[i]) } else { 0.0 };
-            for i in 0..n {
+            let third = |i: usize| {
+                if i < n - 1 {
+                    (s.m[i + 1] - s.m[i]) / (x[i + 1] - x[i])
+                } else {
+                    0.0
+                }
+            };
+            for (i, (yi, si)) in y.iter().zip(s.values()).enumerate() {
                 let jump = third(i) - if i > 0 { third(i - 1) } else { 0.0 };
-                let residual = y[i] - s.values()[i];
-                assert!((residual - lambda * jump).abs() < 1e-12, "lambda {lambda} knot {i}: {residual} vs {}", lambda * jump);
+                let residual = yi - si;
+                assert!(
+                    (residual - lambda * jump).abs() < 1e-12,
+                    "lambda {lambda} knot {i}: {residual} vs {}",
+                    lambda * jump
+                );
             }
         }
     }
@@ -393,7 +446,11 @@ mod tests {
         let mut last_misfit = 0.0;
         for lambda in [1e-3, 1e-2, 0.1, 1.0, 10.0, 100.0] {
             let s = CubicSpline::fit(&x, &y, lambda).unwrap();
-            let misfit: f64 = y.iter().zip(s.values()).map(|(a, b)| (a - b) * (a - b)).sum();
+            let misfit: f64 = y
+                .iter()
+                .zip(s.values())
+                .map(|(a, b)| (a - b) * (a - b))
+                .sum();
             assert!(s.roughness() < last_roughness, "lambda {lambda}");
             assert!(misfit > last_misfit, "lambda {lambda}");
             (last_roughness, last_misfit) = (s.roughness(), misfit);
@@ -404,7 +461,11 @@ mod tests {
         // Tiny smoothing approaches interpolation.
         for lambda in [1e-6, 1e-9, 1e-12] {
             let s = CubicSpline::fit(&x, &y, lambda).unwrap();
-            let worst = y.iter().zip(s.values()).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+            let worst = y
+                .iter()
+                .zip(s.values())
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
             assert!(worst < 100.0 * lambda, "lambda {lambda}: {worst}");
         }
     }
@@ -429,8 +490,14 @@ mod tests {
     fn reports_bad_tables() {
         let x = [0.0, 1.0, 2.0, 3.0, 4.0];
         let y = [1.0, 2.0, 1.0, 0.0, 1.0];
-        assert_eq!(CubicSpline::fit(&x[..3], &y[..3], 0.0), Err(GeomError::TooFewPoints { count: 3 }));
-        assert!(matches!(CubicSpline::fit(&x, &y[..4], 0.0), Err(GeomError::Table { row: 5, .. })));
+        assert_eq!(
+            CubicSpline::fit(&x[..3], &y[..3], 0.0),
+            Err(GeomError::TooFewPoints { count: 3 })
+        );
+        assert!(matches!(
+            CubicSpline::fit(&x, &y[..4], 0.0),
+            Err(GeomError::Table { row: 5, .. })
+        ));
         let row_reason = |x: &[f64], y: &[f64]| match CubicSpline::fit(x, y, 0.0) {
             Err(GeomError::Table { row, reason }) => (row, reason),
             other => panic!("unexpected {other:?}"),
@@ -448,11 +515,17 @@ mod tests {
         assert_eq!(row, 5);
         assert!(matches!(
             CubicSpline::fit(&x, &y, f64::NAN),
-            Err(GeomError::NotFinite { field: "smoothing", .. })
+            Err(GeomError::NotFinite {
+                field: "smoothing",
+                ..
+            })
         ));
         assert!(matches!(
             CubicSpline::fit(&x, &y, -1.0),
-            Err(GeomError::OutOfRange { field: "smoothing", .. })
+            Err(GeomError::OutOfRange {
+                field: "smoothing",
+                ..
+            })
         ));
     }
 

@@ -19,7 +19,10 @@ impl Vessel {
     ) -> Result<Self, GeomError> {
         let radius = positive("radius", radius)?;
         if !cylinder_length.is_finite() {
-            return Err(GeomError::NotFinite { field: "cylinder_length", value: cylinder_length });
+            return Err(GeomError::NotFinite {
+                field: "cylinder_length",
+                value: cylinder_length,
+            });
         }
         if cylinder_length < 0.0 {
             return Err(GeomError::OutOfRange {
@@ -30,12 +33,22 @@ impl Vessel {
         }
         let start = Dome::new(start.0, radius, start.1)?;
         let end = Dome::new(end.0, radius, end.1).map_err(|e| match e {
-            GeomError::OutOfRange { field: "polar_opening", value, allowed } => {
-                GeomError::OutOfRange { field: "polar_opening_end", value, allowed }
-            }
+            GeomError::OutOfRange {
+                field: "polar_opening",
+                value,
+                allowed,
+            } => GeomError::OutOfRange {
+                field: "polar_opening_end",
+                value,
+                allowed,
+            },
             other => other,
         })?;
-        Ok(Self { start, end, cylinder_length })
+        Ok(Self {
+            start,
+            end,
+            cylinder_length,
+        })
     }
 
     /// The dome at `z = z_start`.
@@ -67,16 +80,27 @@ impl Vessel {
 
 impl Meridian for Vessel {
     fn z_range(&self) -> (f64, f64) {
-        (0.0, self.start.height() + self.cylinder_length + self.end.height())
+        (
+            0.0,
+            self.start.height() + self.cylinder_length + self.end.height(),
+        )
     }
 
     fn eval(&self, z: f64) -> Jet {
         let (z1, z2) = self.cylinder_range();
         if z < z1 {
             let j = self.start.eval_w(z1 - z);
-            Jet { r: j.r, dr: -j.dr, d2r: j.d2r }
+            Jet {
+                r: j.r,
+                dr: -j.dr,
+                d2r: j.d2r,
+            }
         } else if z <= z2 {
-            Jet { r: self.radius(), dr: 0.0, d2r: 0.0 }
+            Jet {
+                r: self.radius(),
+                dr: 0.0,
+                d2r: 0.0,
+            }
         } else {
             self.end.eval_w(z - z2)
         }
@@ -100,9 +124,13 @@ mod tests {
 
     #[test]
     fn hemisphere_vessel_geometry() {
-        let v =
-            Vessel::new(100.0, 300.0, (DomeShape::Hemisphere, 30.0), (DomeShape::Hemisphere, 40.0))
-                .unwrap();
+        let v = Vessel::new(
+            100.0,
+            300.0,
+            (DomeShape::Hemisphere, 30.0),
+            (DomeShape::Hemisphere, 40.0),
+        )
+        .unwrap();
         let (a, b) = v.z_range();
         assert_eq!(a, 0.0);
         let h1 = (100.0f64 * 100.0 - 900.0).sqrt();
@@ -122,10 +150,28 @@ mod tests {
 
     #[test]
     fn end_opening_errors_name_their_field() {
-        let e = Vessel::new(100.0, 10.0, (DomeShape::Hemisphere, 30.0), (DomeShape::Hemisphere, 120.0))
-            .unwrap_err();
-        assert!(matches!(e, GeomError::OutOfRange { field: "polar_opening_end", .. }));
-        assert!(Vessel::new(100.0, -1.0, (DomeShape::Hemisphere, 30.0), (DomeShape::Hemisphere, 30.0))
-            .is_err());
+        let e = Vessel::new(
+            100.0,
+            10.0,
+            (DomeShape::Hemisphere, 30.0),
+            (DomeShape::Hemisphere, 120.0),
+        )
+        .unwrap_err();
+        assert!(matches!(
+            e,
+            GeomError::OutOfRange {
+                field: "polar_opening_end",
+                ..
+            }
+        ));
+        assert!(
+            Vessel::new(
+                100.0,
+                -1.0,
+                (DomeShape::Hemisphere, 30.0),
+                (DomeShape::Hemisphere, 30.0)
+            )
+            .is_err()
+        );
     }
 }

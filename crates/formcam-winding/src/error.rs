@@ -39,11 +39,17 @@ pub enum WindingError {
 impl WindingError {
     /// A field error.
     pub fn field(field: impl Into<String>, reason: impl Into<String>) -> Self {
-        Self::Field { field: field.into(), reason: reason.into() }
+        Self::Field {
+            field: field.into(),
+            reason: reason.into(),
+        }
     }
 
     /// An infeasibility caused by `field`.
     pub fn infeasible(field: impl Into<String>, reason: impl Into<String>) -> Self {
-        Self::Infeasible { field: field.into(), reason: reason.into() }
+        Self::Infeasible {
+            field: field.into(),
+            reason: reason.into(),
+        }
     }
 }

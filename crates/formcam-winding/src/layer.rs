@@ -77,7 +77,10 @@ impl Default for LayerSpec {
     fn default() -> Self {
         Self {
             slippage: Slippage::Geodesic,
-            ends: Ends::Poles { start: 0.0, end: 0.0 },
+            ends: Ends::Poles {
+                start: 0.0,
+                end: 0.0,
+            },
             band_width: 10.0,
             band_thickness: 0.5,
             overlap: 0.0,
@@ -188,7 +191,10 @@ fn check_spec(spec: &LayerSpec) -> Result<(), WindingError> {
         if v.is_finite() && v > 0.0 {
             Ok(())
         } else {
-            Err(WindingError::field(field, format!("must be a finite number > 0, got {v}")))
+            Err(WindingError::field(
+                field,
+                format!("must be a finite number > 0, got {v}"),
+            ))
         }
     };
     pos("winding.band_width", spec.band_width)?;
@@ -197,11 +203,16 @@ fn check_spec(spec: &LayerSpec) -> Result<(), WindingError> {
     if !(spec.dwell_min.is_finite() && spec.dwell_min >= 0.0) {
         return Err(WindingError::field("winding.dwell_min_deg", "must be >= 0"));
     }
-    if let Slippage::Constant(m) = spec.slippage {
-        if !m.is_finite() || m.abs() > spec.mu_limit {
+    if let Slippage::Constant(m) = spec.slippage
+        && (!m.is_finite() || m.abs() > spec.mu_limit)
+    {
+        {
             return Err(WindingError::field(
                 "winding.mu",
-                format!("must be a number with |mu| <= mu_limit ({}), got {m}", spec.mu_limit),
+                format!(
+                    "must be a number with |mu| <= mu_limit ({}), got {m}",
+                    spec.mu_limit
+                ),
             ));
         }
     }
@@ -219,11 +230,16 @@ fn check_spec(spec: &LayerSpec) -> Result<(), WindingError> {
             }
         }
     }
-    if let Ends::Tube { winding_angle } = spec.ends {
-        if !(winding_angle > 0.0 && winding_angle < FRAC_PI_2) {
+    if let Ends::Tube { winding_angle } = spec.ends
+        && !(winding_angle > 0.0 && winding_angle < FRAC_PI_2)
+    {
+        {
             return Err(WindingError::field(
                 "winding.winding_angle_deg",
-                format!("must be in (0, 90) degrees, got {}", winding_angle.to_degrees()),
+                format!(
+                    "must be in (0, 90) degrees, got {}",
+                    winding_angle.to_degrees()
+                ),
             ));
         }
     }
@@ -287,9 +303,11 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         (Slippage::Segments(s), Ends::Poles { .. }) => {
             (Method::GivenSlippage, MuLaw::Segments(s.clone()), FRAC_PI_2)
         }
-        (Slippage::Segments(s), Ends::Tube { winding_angle }) => {
-            (Method::GivenSlippage, MuLaw::Segments(s.clone()), winding_angle)
-        }
+        (Slippage::Segments(s), Ends::Tube { winding_angle }) => (
+            Method::GivenSlippage,
+            MuLaw::Segments(s.clone()),
+            winding_angle,
+        ),
         (Slippage::Auto, Ends::Poles { .. }) => match shoot(m, spec.mu_limit) {
             Ok(s) => {
                 shot = Some(s);
@@ -300,7 +318,9 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
                 (Method::Minimax, MuLaw::Constant(0.0), FRAC_PI_2)
             }
         },
-        (Slippage::Minimax, Ends::Poles { .. }) => (Method::Minimax, MuLaw::Constant(0.0), FRAC_PI_2),
+        (Slippage::Minimax, Ends::Poles { .. }) => {
+            (Method::Minimax, MuLaw::Constant(0.0), FRAC_PI_2)
+        }
     };
 
     let mut points = Vec::new();
@@ -310,7 +330,10 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         let tr = trace(m, &law, alpha0, &TraceOptions::default())?;
         points = tr.sample(m, &law, samples);
         if alpha0 < FRAC_PI_2 {
-            start = PassEnd::Exit { z: za, alpha: alpha0 };
+            start = PassEnd::Exit {
+                z: za,
+                alpha: alpha0,
+            };
         }
         end = tr.end;
         let (_, bad) = bridging_margin(m, &points);
@@ -340,7 +363,9 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         minimax_info = Some((mm.mu_max, mm.bridging_active));
         shot = None;
     }
-    let last = *points.last().ok_or_else(|| WindingError::field("winding.samples", "no points"))?;
+    let last = *points
+        .last()
+        .ok_or_else(|| WindingError::field("winding.samples", "no points"))?;
     match (spec.ends, end) {
         (Ends::Tube { .. }, PassEnd::TurnAround { z }) => {
             return Err(WindingError::infeasible(
@@ -389,7 +414,10 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
     let turn_circuit = 2.0 * turn_pass;
 
     // Equator and pattern.
-    let eq = points.iter().copied().fold(points[0], |a, p| if p.r > a.r { p } else { a });
+    let eq = points
+        .iter()
+        .copied()
+        .fold(points[0], |a, p| if p.r > a.r { p } else { a });
     let pattern = choose_pattern(&PatternRequest {
         band_width: spec.band_width,
         overlap: spec.overlap,
@@ -407,7 +435,11 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
 
     // Thickness along the meridian: two plies, n bands of width b across a parallel
     // of circumference 2 pi r at angle alpha; capped one band width from the turn.
-    let r_turn = points.iter().map(|p| p.c).fold(f64::INFINITY, f64::min).max(1e-9);
+    let r_turn = points
+        .iter()
+        .map(|p| p.c)
+        .fold(f64::INFINITY, f64::min)
+        .max(1e-9);
     let r_cap = r_turn + spec.band_width;
     let t_at = |r: f64, alpha: f64| {
         2.0 * spec.band_thickness * n * spec.band_width / (TAU * r * alpha.cos().max(1e-12))
@@ -451,5 +483,12 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         thickness_equator_mm: t_at(eq.r, eq.alpha),
         thickness_max_mm: thickness_max,
     };
-    Ok(Layer { points, thickness, pass, pattern, report, warnings })
+    Ok(Layer {
+        points,
+        thickness,
+        pass,
+        pattern,
+        report,
+        warnings,
+    })
 }

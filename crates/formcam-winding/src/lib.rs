@@ -8,6 +8,7 @@
 //! * [`plan_layer`] turns a [`LayerSpec`] into a [`Layer`]: pass, pattern, report.
 
 mod error;
+pub mod job;
 mod layer;
 pub mod minimax;
 pub mod ode;

@@ -69,7 +69,9 @@ impl Grid {
         let h = (zb - za) / n as f64;
         // Uniform nodes plus the meridian's breakpoints, so that no interval
         // straddles a jump of r''.
-        let mut z: Vec<f64> = (0..=n).map(|i| if i == n { zb } else { za + h * i as f64 }).collect();
+        let mut z: Vec<f64> = (0..=n)
+            .map(|i| if i == n { zb } else { za + h * i as f64 })
+            .collect();
         z.extend(m.breakpoints().into_iter().filter(|b| *b > za && *b < zb));
         z.sort_by(f64::total_cmp);
         z.dedup_by(|a, b| (*a - *b).abs() < 1e-3 * h);
@@ -88,8 +90,11 @@ impl Grid {
     /// always gives the upper envelope).
     fn step(&self, i: usize, c: f64, rate: f64, fwd: bool) -> f64 {
         let h = self.z[i + 1] - self.z[i];
-        let (j0, j1) =
-            if fwd { (&self.node[i], &self.node[i + 1]) } else { (&self.node[i + 1], &self.node[i]) };
+        let (j0, j1) = if fwd {
+            (&self.node[i], &self.node[i + 1])
+        } else {
+            (&self.node[i + 1], &self.node[i])
+        };
         let jm = &self.mid[i];
         let f = |j: &Jet, c: f64| rate * b_factor(j, c).max(0.0);
         let k1 = f(j0, c);
@@ -108,7 +113,11 @@ impl Grid {
         lo[start] = self.node[start].r;
         hi[start] = self.node[start].r;
         for k in 0..n {
-            let (i, next) = if fwd { (k, k + 1) } else { (n - 1 - k, n - 1 - k) };
+            let (i, next) = if fwd {
+                (k, k + 1)
+            } else {
+                (n - 1 - k, n - 1 - k)
+            };
             let cur = if fwd { k } else { n - k };
             let up = self.step(i, hi[cur], m, fwd).min(self.node[next].r);
             let dn = self.step(i, lo[cur], -m, fwd).max(self.cb[next]).max(0.0);
@@ -135,7 +144,11 @@ impl Grid {
 
 /// Solves eqs. 5–6 on `nodes` intervals of `z`; `mu_limit` is the largest slippage
 /// the band can hold (the search gives up beyond it).
-pub fn minimax<M: Meridian>(m: &M, nodes: usize, mu_limit: f64) -> Result<MinimaxPath, WindingError> {
+pub fn minimax<M: Meridian>(
+    m: &M,
+    nodes: usize,
+    mu_limit: f64,
+) -> Result<MinimaxPath, WindingError> {
     let g = Grid::new(m, nodes.max(16));
     let n = g.n();
     let mut hi_m = 1e-3;
@@ -155,7 +168,12 @@ pub fn minimax<M: Meridian>(m: &M, nodes: usize, mu_limit: f64) -> Result<Minima
             ));
         }
     }
-    let mut lo_m = if g.feasible(0.0) { hi_m = 0.0; 0.0 } else { 0.0 };
+    let mut lo_m = if g.feasible(0.0) {
+        hi_m = 0.0;
+        0.0
+    } else {
+        0.0
+    };
     if hi_m > 0.0 {
         for _ in 0..60 {
             let mid = 0.5 * (lo_m + hi_m);
@@ -173,10 +191,16 @@ pub fn minimax<M: Meridian>(m: &M, nodes: usize, mu_limit: f64) -> Result<Minima
     // Build the path with a hair of slack so both tubes are non-degenerate.
     let m_opt = if hi_m > 0.0 { hi_m * (1.0 + 1e-7) } else { 0.0 };
     let (flo, fhi) = g.sweep(m_opt, true).ok_or_else(|| {
-        WindingError::infeasible("winding.mu", "the minimax path could not be rebuilt (grid too coarse?)")
+        WindingError::infeasible(
+            "winding.mu",
+            "the minimax path could not be rebuilt (grid too coarse?)",
+        )
     })?;
     let (blo, bhi) = g.sweep(m_opt, false).ok_or_else(|| {
-        WindingError::infeasible("winding.mu", "the minimax path could not be rebuilt (grid too coarse?)")
+        WindingError::infeasible(
+            "winding.mu",
+            "the minimax path could not be rebuilt (grid too coarse?)",
+        )
     })?;
     let mut c = vec![g.node[0].r; n + 1];
     for i in 0..n {
@@ -184,7 +208,11 @@ pub fn minimax<M: Meridian>(m: &M, nodes: usize, mu_limit: f64) -> Result<Minima
         let dn = g.step(i, c[i], -m_opt, true);
         let lo = dn.max(flo[i + 1]).max(blo[i + 1]);
         let hi = up.min(fhi[i + 1]).min(bhi[i + 1]);
-        c[i + 1] = if lo <= hi { c[i].clamp(lo, hi) } else { 0.5 * (lo + hi) };
+        c[i + 1] = if lo <= hi {
+            c[i].clamp(lo, hi)
+        } else {
+            0.5 * (lo + hi)
+        };
     }
     c[n] = g.node[n].r;
     let mut mu: Vec<f64> = (0..n)
@@ -192,7 +220,13 @@ pub fn minimax<M: Meridian>(m: &M, nodes: usize, mu_limit: f64) -> Result<Minima
             let cm = 0.5 * (c[i] + c[i + 1]);
             let b = b_factor(&g.mid[i], cm);
             let dc = (c[i + 1] - c[i]) / (g.z[i + 1] - g.z[i]);
-            if b > 0.0 { dc / b } else if dc == 0.0 { 0.0 } else { f64::INFINITY.copysign(dc) }
+            if b > 0.0 {
+                dc / b
+            } else if dc == 0.0 {
+                0.0
+            } else {
+                f64::INFINITY.copysign(dc)
+            }
         })
         .collect();
     mu.push(*mu.last().unwrap_or(&0.0));
@@ -200,6 +234,7 @@ pub fn minimax<M: Meridian>(m: &M, nodes: usize, mu_limit: f64) -> Result<Minima
     let rmax = g.node.iter().fold(0.0f64, |a, j| a.max(j.r));
     let mut bridging_active = Vec::new();
     let mut open: Option<f64> = None;
+    #[allow(clippy::needless_range_loop)]
     for i in 0..=n {
         let on = g.cb[i] > 0.0 && c[i] - g.cb[i] <= 1e-6 * rmax;
         match (on, open) {
@@ -214,7 +249,14 @@ pub fn minimax<M: Meridian>(m: &M, nodes: usize, mu_limit: f64) -> Result<Minima
     if let Some(a) = open {
         bridging_active.push((a, g.z[n]));
     }
-    Ok(MinimaxPath { z: g.z, c, c_bridge: g.cb, mu, mu_max, bridging_active })
+    Ok(MinimaxPath {
+        z: g.z,
+        c,
+        c_bridge: g.cb,
+        mu,
+        mu_max,
+        bridging_active,
+    })
 }
 
 impl MinimaxPath {
@@ -246,7 +288,15 @@ pub fn clairaut_points<M: Meridian>(m: &M, z: &[f64], c: &[f64], mu: &[f64]) -> 
             s += q * jm.r / rc * w;
         }
         let alpha = (c[i] / j.r).clamp(-1.0, 1.0).asin();
-        out.push(PathPoint { s, z: z[i], r: j.r, v, alpha, c: c[i], mu: mu.get(i).copied().unwrap_or(0.0) });
+        out.push(PathPoint {
+            s,
+            z: z[i],
+            r: j.r,
+            v,
+            alpha,
+            c: c[i],
+            mu: mu.get(i).copied().unwrap_or(0.0),
+        });
     }
     out
 }

@@ -1,6 +1,8 @@
 //! Adaptive Dormand–Prince 5(4) integrator with error control, dense output
 //! and event location, for small fixed-size systems.
 
+#![allow(clippy::needless_range_loop)]
+
 /// Tolerances and limits of one integration.
 #[derive(Debug, Clone, Copy)]
 pub struct Tolerance {
@@ -16,7 +18,12 @@ pub struct Tolerance {
 
 impl Default for Tolerance {
     fn default() -> Self {
-        Self { rtol: 1e-12, atol: 1e-12, h_max: f64::INFINITY, max_steps: 200_000 }
+        Self {
+            rtol: 1e-12,
+            atol: 1e-12,
+            h_max: f64::INFINITY,
+            max_steps: 200_000,
+        }
     }
 }
 
@@ -119,10 +126,27 @@ fn trial<const N: usize, F: FnMut(f64, &[f64; N]) -> [f64; N]>(
 ) -> Trial<N> {
     let k2 = f(t + C2 * h, &axpy(y, h, &[(A21, k1)]));
     let k3 = f(t + C3 * h, &axpy(y, h, &[(A31, k1), (A32, &k2)]));
-    let k4 = f(t + C4 * h, &axpy(y, h, &[(A41, k1), (A42, &k2), (A43, &k3)]));
-    let k5 = f(t + C5 * h, &axpy(y, h, &[(A51, k1), (A52, &k2), (A53, &k3), (A54, &k4)]));
-    let k6 = f(t + h, &axpy(y, h, &[(A61, k1), (A62, &k2), (A63, &k3), (A64, &k4), (A65, &k5)]));
-    let y1 = axpy(y, h, &[(A71, k1), (A73, &k3), (A74, &k4), (A75, &k5), (A76, &k6)]);
+    let k4 = f(
+        t + C4 * h,
+        &axpy(y, h, &[(A41, k1), (A42, &k2), (A43, &k3)]),
+    );
+    let k5 = f(
+        t + C5 * h,
+        &axpy(y, h, &[(A51, k1), (A52, &k2), (A53, &k3), (A54, &k4)]),
+    );
+    let k6 = f(
+        t + h,
+        &axpy(
+            y,
+            h,
+            &[(A61, k1), (A62, &k2), (A63, &k3), (A64, &k4), (A65, &k5)],
+        ),
+    );
+    let y1 = axpy(
+        y,
+        h,
+        &[(A71, k1), (A73, &k3), (A74, &k4), (A75, &k5), (A76, &k6)],
+    );
     let k7 = f(t + h, &y1);
     let mut sum = 0.0;
     let mut rc = [[0.0; N]; 3];
@@ -134,12 +158,27 @@ fn trial<const N: usize, F: FnMut(f64, &[f64; N]) -> [f64; N]>(
         let bspl = h * k1[i] - d;
         rc[0][i] = bspl;
         rc[1][i] = d - h * k7[i] - bspl;
-        rc[2][i] = h
-            * (D1 * k1[i] + D3 * k3[i] + D4 * k4[i] + D5 * k5[i] + D6 * k6[i] + D7 * k7[i]);
+        rc[2][i] =
+            h * (D1 * k1[i] + D3 * k3[i] + D4 * k4[i] + D5 * k5[i] + D6 * k6[i] + D7 * k7[i]);
     }
     let err = (sum / N as f64).sqrt();
-    let err = if err.is_finite() && y1.iter().all(|v| v.is_finite()) { err } else { f64::INFINITY };
-    Trial { y1, f1: k7, err, step: Step { t0: t, h, y0: *y, y1, rc } }
+    let err = if err.is_finite() && y1.iter().all(|v| v.is_finite()) {
+        err
+    } else {
+        f64::INFINITY
+    };
+    Trial {
+        y1,
+        f1: k7,
+        err,
+        step: Step {
+            t0: t,
+            h,
+            y0: *y,
+            y1,
+            rc,
+        },
+    }
 }
 
 /// What the observer wants after each accepted step.
@@ -202,7 +241,11 @@ impl<const N: usize, F: FnMut(f64, &[f64; N]) -> [f64; N]> Integrator<N, F> {
             }
             let tr = trial(&mut self.f, t, &y, &k1, h, &tol);
             if tr.err > 1.0 && retake.is_none() {
-                let fac = if tr.err.is_finite() { (0.9 * tr.err.powf(-0.2)).max(0.2) } else { 0.1 };
+                let fac = if tr.err.is_finite() {
+                    (0.9 * tr.err.powf(-0.2)).max(0.2)
+                } else {
+                    0.1
+                };
                 h *= fac;
                 if h < 1e-14 * (t.abs() + 1.0) {
                     return (Outcome::Failed, t, y);
@@ -229,7 +272,11 @@ impl<const N: usize, F: FnMut(f64, &[f64; N]) -> [f64; N]> Integrator<N, F> {
             if t >= t_end {
                 return (Outcome::Reached, t, y);
             }
-            let fac = if tr.err > 0.0 { (0.9 * tr.err.powf(-0.2)).clamp(0.2, 5.0) } else { 5.0 };
+            let fac = if tr.err > 0.0 {
+                (0.9 * tr.err.powf(-0.2)).clamp(0.2, 5.0)
+            } else {
+                5.0
+            };
             h = (h * fac).min(tol.h_max).min(t_end - t);
         }
         (Outcome::Failed, t, y)

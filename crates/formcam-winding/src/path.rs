@@ -91,7 +91,11 @@ pub struct TraceOptions {
 
 impl Default for TraceOptions {
     fn default() -> Self {
-        Self { exit_at_end: true, overrun: f64::INFINITY, tol: Tolerance::default() }
+        Self {
+            exit_at_end: true,
+            overrun: f64::INFINITY,
+            tol: Tolerance::default(),
+        }
     }
 }
 
@@ -155,8 +159,9 @@ pub fn trace<M: Meridian>(
         if outcome == Outcome::Failed || ev.is_none() {
             return Err(WindingError::Integration {
                 z: y1[0],
-                reason: "the step size collapsed (the meridian or slippage makes the path singular)"
-                    .into(),
+                reason:
+                    "the step size collapsed (the meridian or slippage makes the path singular)"
+                        .into(),
             });
         }
         t = t1;
@@ -171,7 +176,12 @@ pub fn trace<M: Meridian>(
             }
             Some(Event::Turn) => {
                 y[2] = FRAC_PI_2;
-                return Ok(Trace { steps, end: PassEnd::TurnAround { z: y[0] }, length: t, last: y });
+                return Ok(Trace {
+                    steps,
+                    end: PassEnd::TurnAround { z: y[0] },
+                    length: t,
+                    last: y,
+                });
             }
             Some(Event::Exit) => {
                 y[0] = zb;
@@ -183,7 +193,15 @@ pub fn trace<M: Meridian>(
                 });
             }
             Some(Event::Overrun) | None => {
-                return Ok(Trace { steps, end: PassEnd::Exit { z: y[0], alpha: y[2] }, length: t, last: y });
+                return Ok(Trace {
+                    steps,
+                    end: PassEnd::Exit {
+                        z: y[0],
+                        alpha: y[2],
+                    },
+                    length: t,
+                    last: y,
+                });
             }
         }
     }
@@ -212,11 +230,20 @@ fn first_event(
     };
     let xtol = 1e-14 * (st.t1().abs() + 1.0);
     if st.y0[2] < FRAC_PI_2 && st.y1[2] >= FRAC_PI_2 {
-        consider(find_root(|t| st.at(t)[2] - FRAC_PI_2, st.t0, st.t1(), xtol, 0.0), Event::Turn);
+        consider(
+            find_root(|t| st.at(t)[2] - FRAC_PI_2, st.t0, st.t1(), xtol, 0.0),
+            Event::Turn,
+        );
     }
-    if let Some(zc) = next_cut {
-        if st.y0[0] < zc && st.y1[0] >= zc {
-            consider(find_root(|t| st.at(t)[0] - zc, st.t0, st.t1(), xtol, 0.0), Event::Cut(zc));
+    if let Some(zc) = next_cut
+        && st.y0[0] < zc
+        && st.y1[0] >= zc
+    {
+        {
+            consider(
+                find_root(|t| st.at(t)[0] - zc, st.t0, st.t1(), xtol, 0.0),
+                Event::Cut(zc),
+            );
         }
     }
     if opts.exit_at_end && st.y0[0] < z_end && st.y1[0] >= z_end {
@@ -260,7 +287,11 @@ impl Trace {
         let mut out = Vec::with_capacity(n);
         let mut i = 0;
         for k in 0..n {
-            let s = if k + 1 == n { self.length } else { self.length * k as f64 / (n - 1) as f64 };
+            let s = if k + 1 == n {
+                self.length
+            } else {
+                self.length * k as f64 / (n - 1) as f64
+            };
             while i + 1 < self.steps.len() && self.steps[i].t1() < s {
                 i += 1;
             }
@@ -272,7 +303,15 @@ impl Trace {
                 self.steps.get(i).map_or(self.last, |st| st.at(s))
             };
             let r = m.r(y[0]);
-            out.push(PathPoint { s, z: y[0], r, v: y[1], alpha: y[2], c: r * y[2].sin(), mu: law.at(y[0]) });
+            out.push(PathPoint {
+                s,
+                z: y[0],
+                r,
+                v: y[1],
+                alpha: y[2],
+                c: r * y[2].sin(),
+                mu: law.at(y[0]),
+            });
         }
         out
     }

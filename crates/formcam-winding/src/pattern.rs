@@ -83,7 +83,10 @@ pub fn choose_pattern(req: &PatternRequest) -> Result<Pattern, WindingError> {
         return Err(WindingError::field("winding.band_width", "must be > 0 mm"));
     }
     if !(0.0..1.0).contains(&req.overlap) {
-        return Err(WindingError::field("winding.overlap", "must be in [0, 1) (a fraction of the band width)"));
+        return Err(WindingError::field(
+            "winding.overlap",
+            "must be in [0, 1) (a fraction of the band width)",
+        ));
     }
     let cover = TAU * req.radius * req.alpha.cos();
     let width = req.band_width * (1.0 - req.overlap);

@@ -25,7 +25,11 @@ pub struct Shot {
 /// Miss distance of the far turn-around for slippage `mu`: `z_turn - z_end`
 /// (negative when the path turns early), clamped to `+overrun` when it runs away.
 fn miss<M: Meridian>(m: &M, mu: f64, overrun: f64) -> f64 {
-    let opts = TraceOptions { exit_at_end: false, overrun, ..TraceOptions::default() };
+    let opts = TraceOptions {
+        exit_at_end: false,
+        overrun,
+        ..TraceOptions::default()
+    };
     let z_end = m.z_end();
     match trace(m, &MuLaw::Constant(mu), FRAC_PI_2, &opts) {
         Ok(tr) => match tr.end {
@@ -79,7 +83,11 @@ pub fn shoot<M: Meridian>(m: &M, mu_limit: f64) -> Result<Shot, WindingError> {
         };
         find_root(&mut f, a, b, 1e-15 * a.abs().max(b.abs()), 1e-11)
     };
-    let opts = TraceOptions { exit_at_end: false, overrun, ..TraceOptions::default() };
+    let opts = TraceOptions {
+        exit_at_end: false,
+        overrun,
+        ..TraceOptions::default()
+    };
     let tr = trace(m, &MuLaw::Constant(mu), FRAC_PI_2, &opts)?;
     let z_turn = tr.z_last();
     let residual_mm = far_residual(m, &tr, zb);
@@ -88,7 +96,12 @@ pub fn shoot<M: Meridian>(m: &M, mu_limit: f64) -> Result<Shot, WindingError> {
             "shooting did not converge: the path turns at z = {z_turn:.6} mm instead of {zb:.6} mm"
         )));
     }
-    Ok(Shot { mu, z_turn, residual_mm, evaluations: evals })
+    Ok(Shot {
+        mu,
+        z_turn,
+        residual_mm,
+        evaluations: evals,
+    })
 }
 
 /// `|r(z_end) - C(z_end)|` from a traced pass that turns at or near `z_end`.

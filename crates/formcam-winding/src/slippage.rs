@@ -25,9 +25,11 @@ impl MuLaw {
     pub fn at(&self, z: f64) -> f64 {
         match self {
             MuLaw::Constant(m) => *m,
-            MuLaw::Segments(segs) => {
-                segs.iter().rev().find(|s| z >= s.z_from && z < s.z_to).map_or(0.0, |s| s.mu)
-            }
+            MuLaw::Segments(segs) => segs
+                .iter()
+                .rev()
+                .find(|s| z >= s.z_from && z < s.z_to)
+                .map_or(0.0, |s| s.mu),
         }
     }
 

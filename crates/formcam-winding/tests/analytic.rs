@@ -1,5 +1,7 @@
 //! Validation of the path engine against analytic solutions.
 
+#![allow(clippy::unwrap_used, clippy::needless_range_loop)]
+
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use formcam_geom::{Cone, Cylinder, DomeShape, Jet, Meridian, Mirrored, Vessel};
@@ -10,7 +12,13 @@ use formcam_winding::{
 };
 
 fn vessel(rp1: f64, rp2: f64) -> Vessel {
-    Vessel::new(100.0, 300.0, (DomeShape::Hemisphere, rp1), (DomeShape::Hemisphere, rp2)).unwrap()
+    Vessel::new(
+        100.0,
+        300.0,
+        (DomeShape::Hemisphere, rp1),
+        (DomeShape::Hemisphere, rp2),
+    )
+    .unwrap()
 }
 
 #[test]
@@ -22,7 +30,11 @@ fn cylinder_geodesic_is_a_helix() {
     assert!(matches!(tr.end, PassEnd::Exit { .. }));
     let pts = tr.sample(&cyl, &law, 501);
     for p in &pts {
-        assert!((p.v - p.z * alpha.tan() / 50.0).abs() < 1e-9, "v at z = {}", p.z);
+        assert!(
+            (p.v - p.z * alpha.tan() / 50.0).abs() < 1e-9,
+            "v at z = {}",
+            p.z
+        );
         assert!((p.alpha - alpha).abs() < 1e-12);
     }
     let last = pts.last().unwrap();
@@ -36,7 +48,10 @@ fn hemisphere_vessel_circuit_turns_two_pi_plus_helix() {
     let v = vessel(30.0, 30.0);
     let spec = LayerSpec {
         slippage: Slippage::Geodesic,
-        ends: Ends::Poles { start: 30.0, end: 30.0 },
+        ends: Ends::Poles {
+            start: 30.0,
+            end: 30.0,
+        },
         ..LayerSpec::default()
     };
     let layer = plan_layer(&v, &spec).unwrap();
@@ -53,13 +68,23 @@ fn hemisphere_vessel_circuit_turns_two_pi_plus_helix() {
     let h = (100.0f64 * 100.0 - 900.0).sqrt();
     let law = MuLaw::Constant(0.0);
     let tr = trace(&v, &law, FRAC_PI_2, &TraceOptions::default()).unwrap();
-    let s_in = formcam_winding::ode::find_root(|s| tr.state_at(s)[0] - h, 0.0, tr.length(), 1e-13, 0.0);
+    let s_in =
+        formcam_winding::ode::find_root(|s| tr.state_at(s)[0] - h, 0.0, tr.length(), 1e-13, 0.0);
     assert!((tr.state_at(s_in)[1] - FRAC_PI_2).abs() < 1e-8);
     // A sphere (no cylinder): half a great circle per pass.
-    let sphere =
-        Vessel::new(100.0, 0.0, (DomeShape::Hemisphere, 30.0), (DomeShape::Hemisphere, 30.0)).unwrap();
+    let sphere = Vessel::new(
+        100.0,
+        0.0,
+        (DomeShape::Hemisphere, 30.0),
+        (DomeShape::Hemisphere, 30.0),
+    )
+    .unwrap();
     let tr = trace(&sphere, &law, FRAC_PI_2, &TraceOptions::default()).unwrap();
-    assert!((tr.turn_angle() - PI).abs() < 1e-9, "{}", tr.turn_angle() - PI);
+    assert!(
+        (tr.turn_angle() - PI).abs() < 1e-9,
+        "{}",
+        tr.turn_angle() - PI
+    );
     assert!((tr.length() - PI * 100.0).abs() < 1e-8);
 }
 
@@ -74,7 +99,12 @@ fn cone_geodesic_matches_closed_form() {
         let tr = trace(&cone, &law, alpha0, &TraceOptions::default()).unwrap();
         for p in tr.sample(&cone, &law, 301) {
             let theta = ((c / p.r).acos() - (c / r0).acos()) / beta.sin();
-            assert!((p.v - theta).abs() < 1e-9, "cone {r0}->{r1} z {}: {} vs {theta}", p.z, p.v);
+            assert!(
+                (p.v - theta).abs() < 1e-9,
+                "cone {r0}->{r1} z {}: {} vs {theta}",
+                p.z,
+                p.v
+            );
             assert!((p.c - c).abs() < 1e-9);
         }
     }
@@ -90,7 +120,11 @@ fn nongeodesic_cylinder_matches_closed_form() {
         let tr = trace(&cyl, &law, alpha0, &TraceOptions::default()).unwrap();
         for p in tr.sample(&cyl, &law, 301) {
             let inv = 1.0 / alpha0.sin() - mu * p.z / r;
-            assert!((1.0 / p.alpha.sin() - inv).abs() < 1e-9, "mu {mu} z {}", p.z);
+            assert!(
+                (1.0 / p.alpha.sin() - inv).abs() < 1e-9,
+                "mu {mu} z {}",
+                p.z
+            );
         }
     }
 }
@@ -107,7 +141,13 @@ fn turn_angle_agrees_with_quadrature_of_eq1() {
     )
     .unwrap();
     let c = 25.0;
-    let tr = trace(&v, &MuLaw::Constant(0.0), FRAC_PI_2, &TraceOptions::default()).unwrap();
+    let tr = trace(
+        &v,
+        &MuLaw::Constant(0.0),
+        FRAC_PI_2,
+        &TraceOptions::default(),
+    )
+    .unwrap();
     let f = |z: f64| {
         let j = v.eval(z);
         c * (1.0 + j.dr * j.dr).sqrt() / (j.r * (j.r * j.r - c * c).sqrt())
@@ -116,8 +156,20 @@ fn turn_angle_agrees_with_quadrature_of_eq1() {
     let zm = 0.5 * (za + zb);
     // Gauss-Legendre 5 points on many panels.
     let gl = |g: &dyn Fn(f64) -> f64, a: f64, b: f64, n: usize| {
-        let x = [0.0, 0.538_469_310_105_683_1, -0.538_469_310_105_683_1, 0.906_179_845_938_664, -0.906_179_845_938_664];
-        let w = [0.568_888_888_888_888_9, 0.478_628_670_499_366_5, 0.478_628_670_499_366_5, 0.236_926_885_056_189_1, 0.236_926_885_056_189_1];
+        let x = [
+            0.0,
+            0.538_469_310_105_683_1,
+            -0.538_469_310_105_683_1,
+            0.906_179_845_938_664,
+            -0.906_179_845_938_664,
+        ];
+        let w = [
+            0.568_888_888_888_888_9,
+            0.478_628_670_499_366_5,
+            0.478_628_670_499_366_5,
+            0.236_926_885_056_189_1,
+            0.236_926_885_056_189_1,
+        ];
         let h = (b - a) / n as f64;
         (0..n)
             .map(|i| {
@@ -130,7 +182,11 @@ fn turn_angle_agrees_with_quadrature_of_eq1() {
     let left = gl(&|t: f64| 2.0 * t * f(za + t * t), 0.0, tmax, 4000);
     let right = gl(&|t: f64| 2.0 * t * f(zb - t * t), 0.0, tmax, 4000);
     let quad = left + right;
-    assert!((tr.turn_angle() - quad).abs() < 1e-8, "{} vs {quad}", tr.turn_angle());
+    assert!(
+        (tr.turn_angle() - quad).abs() < 1e-8,
+        "{} vs {quad}",
+        tr.turn_angle()
+    );
 }
 
 #[test]
@@ -142,21 +198,48 @@ fn shooting_meets_both_openings_from_either_end() {
     assert!((shot.z_turn - v.z_end()).abs() < 1e-9);
     let back = shoot(&Mirrored(&v), 0.6).unwrap();
     assert!(back.residual_mm < 1e-9);
-    assert!((back.mu + shot.mu).abs() < 1e-9, "{} vs {}", back.mu, shot.mu);
+    assert!(
+        (back.mu + shot.mu).abs() < 1e-9,
+        "{} vs {}",
+        back.mu,
+        shot.mu
+    );
     // The same path: C(z) agrees at matching z.
     let law_f = MuLaw::Constant(shot.mu);
     let law_b = MuLaw::Constant(back.mu);
-    let opts = TraceOptions { exit_at_end: false, overrun: 10.0, ..TraceOptions::default() };
-    let pf = trace(&v, &law_f, FRAC_PI_2, &opts).unwrap().sample(&v, &law_f, 400);
+    let opts = TraceOptions {
+        exit_at_end: false,
+        overrun: 10.0,
+        ..TraceOptions::default()
+    };
+    let pf = trace(&v, &law_f, FRAC_PI_2, &opts)
+        .unwrap()
+        .sample(&v, &law_f, 400);
     let mb = Mirrored(&v);
     let tb = trace(&mb, &law_b, FRAC_PI_2, &opts).unwrap();
     let total = v.z_start() + v.z_end();
-    for p in pf.iter().step_by(7).filter(|p| p.z > 1.0 && p.z < v.z_end() - 1.0) {
+    for p in pf
+        .iter()
+        .step_by(7)
+        .filter(|p| p.z > 1.0 && p.z < v.z_end() - 1.0)
+    {
         let zt = total - p.z;
-        let s = formcam_winding::ode::find_root(|s| tb.state_at(s)[0] - zt, 0.0, tb.length(), 1e-13, 0.0);
+        let s = formcam_winding::ode::find_root(
+            |s| tb.state_at(s)[0] - zt,
+            0.0,
+            tb.length(),
+            1e-13,
+            0.0,
+        );
         let y = tb.state_at(s);
         let c_b = mb.r(y[0]) * y[2].sin();
-        assert!((c_b - p.c).abs() < 1e-6, "C at z {}: {} vs {}", p.z, p.c, c_b);
+        assert!(
+            (c_b - p.c).abs() < 1e-6,
+            "C at z {}: {} vs {}",
+            p.z,
+            p.c,
+            c_b
+        );
     }
 }
 
@@ -165,7 +248,10 @@ fn auto_layer_reports_shooting() {
     let v = vessel(30.0, 45.0);
     let spec = LayerSpec {
         slippage: Slippage::Auto,
-        ends: Ends::Poles { start: 30.0, end: 45.0 },
+        ends: Ends::Poles {
+            start: 30.0,
+            end: 45.0,
+        },
         ..LayerSpec::default()
     };
     let layer = plan_layer(&v, &spec).unwrap();
@@ -228,7 +314,10 @@ fn concave_minimax_beats_brute_force_and_respects_bridging() {
     // The geodesic bridges here, so mu = 0 is refused.
     let spec = LayerSpec {
         slippage: Slippage::Geodesic,
-        ends: Ends::Poles { start: m.r(0.0), end: m.r(300.0) },
+        ends: Ends::Poles {
+            start: m.r(0.0),
+            end: m.r(300.0),
+        },
         ..LayerSpec::default()
     };
     assert!(plan_layer(&m, &spec).is_err());
@@ -238,9 +327,15 @@ fn concave_minimax_beats_brute_force_and_respects_bridging() {
     for (i, (&z, &c)) in sol.z.iter().zip(&sol.c).enumerate() {
         let j = m.eval(z);
         assert!(c >= -1e-12 && c <= j.r + 1e-9, "C out of [0, r] at {z}");
-        assert!(c >= sol.c_bridge[i] - 1e-7, "bridging at z = {z}: {c} < {}", sol.c_bridge[i]);
+        assert!(
+            c >= sol.c_bridge[i] - 1e-7,
+            "bridging at z = {z}: {c} < {}",
+            sol.c_bridge[i]
+        );
     }
-    assert!((sol.c[0] - m.r(0.0)).abs() < 1e-12 && (sol.c.last().unwrap() - m.r(300.0)).abs() < 1e-12);
+    assert!(
+        (sol.c[0] - m.r(0.0)).abs() < 1e-12 && (sol.c.last().unwrap() - m.r(300.0)).abs() < 1e-12
+    );
     // The reported mu is the true worst-case slippage of the returned C(z).
     let mut worst: f64 = 0.0;
     for i in 0..sol.z.len() - 1 {
@@ -248,13 +343,22 @@ fn concave_minimax_beats_brute_force_and_respects_bridging() {
         let b = b_factor(&m.eval(zm), 0.5 * (sol.c[i] + sol.c[i + 1]));
         worst = worst.max(((sol.c[i + 1] - sol.c[i]) / (sol.z[i + 1] - sol.z[i]) / b).abs());
     }
-    assert!((worst - sol.mu_max).abs() <= 1e-3 * sol.mu_max, "{worst} vs {}", sol.mu_max);
-    assert!(!sol.bridging_active.is_empty(), "the bridging limit binds on this waist");
+    assert!(
+        (worst - sol.mu_max).abs() <= 1e-3 * sol.mu_max,
+        "{worst} vs {}",
+        sol.mu_max
+    );
+    assert!(
+        !sol.bridging_active.is_empty(),
+        "the bridging limit binds on this waist"
+    );
 
     // Brute force over piecewise-linear C on a coarse grid.
     let nodes = 7;
     let levels = 80;
-    let zs: Vec<f64> = (0..nodes).map(|i| 300.0 * i as f64 / (nodes - 1) as f64).collect();
+    let zs: Vec<f64> = (0..nodes)
+        .map(|i| 300.0 * i as f64 / (nodes - 1) as f64)
+        .collect();
     let level_c = |i: usize, l: usize| {
         if i == 0 {
             m.r(0.0)
@@ -277,7 +381,9 @@ fn concave_minimax_beats_brute_force_and_respects_bridging() {
                 continue;
             }
             for b in 0..cur_levels {
-                if let Some(cost) = segment_cost(&m, zs[i - 1], level_c(i - 1, a), zs[i], level_c(i, b)) {
+                if let Some(cost) =
+                    segment_cost(&m, zs[i - 1], level_c(i - 1, a), zs[i], level_c(i, b))
+                {
                     next[b] = next[b].min(best[a].max(cost));
                 }
             }
@@ -286,12 +392,19 @@ fn concave_minimax_beats_brute_force_and_respects_bridging() {
     }
     let brute = best[0];
     assert!(brute.is_finite());
-    assert!(sol.mu_max <= brute * 1.001, "minimax {} vs brute force {brute}", sol.mu_max);
+    assert!(
+        sol.mu_max <= brute * 1.001,
+        "minimax {} vs brute force {brute}",
+        sol.mu_max
+    );
 
     // mu = "auto" falls back to the minimax on this mandrel.
     let spec = LayerSpec {
         slippage: Slippage::Auto,
-        ends: Ends::Poles { start: m.r(0.0), end: m.r(300.0) },
+        ends: Ends::Poles {
+            start: m.r(0.0),
+            end: m.r(300.0),
+        },
         mu_limit: 3.0,
         ..LayerSpec::default()
     };

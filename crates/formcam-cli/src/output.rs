@@ -1,0 +1,43 @@
+//! Atomic output: every file is written to a temporary name in the output
+//! folder and renamed into place, so a failed run leaves no half-written file.
+
+use std::fs;
+use std::io::Write;
+use std::path::Path;
+
+use crate::CliError;
+
+/// Writes all `files` (name, contents) into `dir`, creating it if needed.
+/// Nothing is renamed into place until every temporary file is complete.
+pub fn write_all(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<(), CliError> {
+    fs::create_dir_all(dir).map_err(|e| {
+        CliError(format!(
+            "{}: cannot create the output folder: {e}",
+            dir.display()
+        ))
+    })?;
+    let mut temps = Vec::new();
+    for (name, data) in files {
+        let tmp = dir.join(format!(".{name}.tmp"));
+        let res = fs::File::create(&tmp).and_then(|mut f| {
+            f.write_all(data)?;
+            f.sync_all()
+        });
+        if let Err(e) = res {
+            for t in &temps {
+                let _ = fs::remove_file(t);
+            }
+            let _ = fs::remove_file(&tmp);
+            return Err(CliError(format!(
+                "{}: cannot write: {e}",
+                dir.join(name).display()
+            )));
+        }
+        temps.push(tmp);
+    }
+    for ((name, _), tmp) in files.iter().zip(&temps) {
+        fs::rename(tmp, dir.join(name))
+            .map_err(|e| CliError(format!("{}: cannot write: {e}", dir.join(name).display())))?;
+    }
+    Ok(())
+}

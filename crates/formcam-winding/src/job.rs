@@ -1,0 +1,404 @@
+//! The job file's `[mandrel]` and `[winding]` tables, as users write them, and
+//! their translation into a mandrel and a [`LayerSpec`].
+//!
+//! Fields are optional in the types so that a missing one is reported by its
+//! dotted name (`mandrel.radius`) with what it should be.
+
+use formcam_geom::{Cone, Cylinder, DomeShape, GeomError, Jet, Meridian, Tabulated, Vessel};
+use serde::Deserialize;
+
+use crate::{Ends, LayerSpec, MuSegment, Slippage, WindingError};
+
+/// `[mandrel]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MandrelSpec {
+    /// `cylinder | cone | vessel | profile`.
+    pub kind: Option<String>,
+    /// Cylinder radius, mm.
+    pub radius: Option<f64>,
+    /// Tube length, mm.
+    pub length: Option<f64>,
+    /// Cone radius at `z = 0`, mm.
+    pub radius_start: Option<f64>,
+    /// Cone radius at `z = length`, mm.
+    pub radius_end: Option<f64>,
+    /// Cylinder length of a vessel, mm.
+    pub cylinder_length: Option<f64>,
+    /// Dome at the start (and at the end unless `dome_end` is given).
+    pub dome: Option<String>,
+    /// Dome at the end.
+    pub dome_end: Option<String>,
+    /// Polar opening radius at the start (and end unless `polar_opening_end`), mm.
+    pub polar_opening: Option<f64>,
+    /// Polar opening radius at the end, mm.
+    pub polar_opening_end: Option<f64>,
+    /// Ellipsoidal dome: depth / radius.
+    pub axis_ratio: Option<f64>,
+    /// Ellipsoidal end dome: depth / radius.
+    pub axis_ratio_end: Option<f64>,
+    /// Torispherical dome: crown radius, mm.
+    pub crown_radius: Option<f64>,
+    /// Torispherical dome: knuckle radius, mm.
+    pub knuckle_radius: Option<f64>,
+    /// Torispherical end dome: crown radius, mm.
+    pub crown_radius_end: Option<f64>,
+    /// Torispherical end dome: knuckle radius, mm.
+    pub knuckle_radius_end: Option<f64>,
+    /// Profile: CSV file of `z,r` points, relative to the job file.
+    pub file: Option<String>,
+    /// Profile: spline smoothing (0 = interpolate).
+    pub smoothing: Option<f64>,
+}
+
+/// `mu` as users write it: a number, `"auto"` or `"minimax"`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum MuField {
+    /// A constant slippage.
+    Number(f64),
+    /// A method name.
+    Word(String),
+}
+
+/// `[winding]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WindingSpec {
+    /// Slippage: number, `"auto"` or `"minimax"`.
+    pub mu: Option<MuField>,
+    /// Piecewise-constant slippage.
+    pub mu_segments: Option<Vec<MuSegmentSpec>>,
+    /// Band width, mm.
+    pub band_width: Option<f64>,
+    /// Band thickness, mm.
+    pub band_thickness: Option<f64>,
+    /// Overlap of neighbouring bands, fraction of the band width (default 0).
+    pub overlap: Option<f64>,
+    /// Tubes: winding angle at `z = 0`, degrees.
+    pub winding_angle_deg: Option<f64>,
+    /// Required pattern number.
+    pub pattern_number: Option<u32>,
+    /// Required skip index.
+    pub skip_index: Option<u32>,
+    /// Least dwell at each turn-around, degrees (default 0 for vessels, 180 for tubes).
+    pub dwell_min_deg: Option<f64>,
+    /// Largest slippage the band holds (default 0.6).
+    pub mu_limit: Option<f64>,
+    /// Points written per pass (default 2001).
+    pub samples: Option<usize>,
+}
+
+/// One `mu_segments` entry.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MuSegmentSpec {
+    /// Start, mm.
+    pub z_from: f64,
+    /// End, mm.
+    pub z_to: f64,
+    /// Slippage.
+    pub mu: f64,
+}
+
+/// A mandrel built from a job.
+#[derive(Debug, Clone)]
+pub enum Mandrel {
+    /// A cylinder tube.
+    Cylinder(Cylinder),
+    /// A conical tube.
+    Cone(Cone),
+    /// A vessel with domes.
+    Vessel(Vessel),
+    /// A tabulated meridian.
+    Profile(Tabulated),
+}
+
+impl Meridian for Mandrel {
+    fn z_range(&self) -> (f64, f64) {
+        match self {
+            Mandrel::Cylinder(m) => m.z_range(),
+            Mandrel::Cone(m) => m.z_range(),
+            Mandrel::Vessel(m) => m.z_range(),
+            Mandrel::Profile(m) => m.z_range(),
+        }
+    }
+    fn eval(&self, z: f64) -> Jet {
+        match self {
+            Mandrel::Cylinder(m) => m.eval(z),
+            Mandrel::Cone(m) => m.eval(z),
+            Mandrel::Vessel(m) => m.eval(z),
+            Mandrel::Profile(m) => m.eval(z),
+        }
+    }
+    fn breakpoints(&self) -> Vec<f64> {
+        match self {
+            Mandrel::Cylinder(m) => m.breakpoints(),
+            Mandrel::Cone(m) => m.breakpoints(),
+            Mandrel::Vessel(m) => m.breakpoints(),
+            Mandrel::Profile(m) => m.breakpoints(),
+        }
+    }
+}
+
+impl Mandrel {
+    /// `cylinder`, `cone`, `vessel` or `profile`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Mandrel::Cylinder(_) => "cylinder",
+            Mandrel::Cone(_) => "cone",
+            Mandrel::Vessel(_) => "vessel",
+            Mandrel::Profile(_) => "profile",
+        }
+    }
+
+    /// Whether the mandrel is an open tube (no polar openings).
+    pub fn is_tube(&self) -> bool {
+        matches!(self, Mandrel::Cylinder(_) | Mandrel::Cone(_))
+    }
+}
+
+fn need(field: &str, v: Option<f64>, what: &str) -> Result<f64, WindingError> {
+    v.ok_or_else(|| WindingError::field(field, format!("missing: {what}")))
+}
+
+fn geom(prefix: &str, e: GeomError) -> WindingError {
+    match e {
+        GeomError::NotFinite { field, value } => WindingError::field(
+            format!("{prefix}.{field}"),
+            format!("must be a finite number, got {value}"),
+        ),
+        GeomError::NotPositive { field, value } => WindingError::field(
+            format!("{prefix}.{field}"),
+            format!("must be > 0 mm, got {value}"),
+        ),
+        GeomError::OutOfRange {
+            field,
+            value,
+            allowed,
+        } => WindingError::field(
+            format!("{prefix}.{field}"),
+            format!("{value} is out of range: {allowed}"),
+        ),
+        other => WindingError::field(format!("{prefix}.file"), other.to_string()),
+    }
+}
+
+fn dome_shape(
+    name: &str,
+    field: &str,
+    axis_ratio: (Option<f64>, &str),
+    crown: (Option<f64>, &str),
+    knuckle: (Option<f64>, &str),
+) -> Result<DomeShape, WindingError> {
+    match name {
+        "hemisphere" => Ok(DomeShape::Hemisphere),
+        "ellipsoid" => Ok(DomeShape::Ellipsoid {
+            axis_ratio: need(
+                axis_ratio.1,
+                axis_ratio.0,
+                "dome depth / radius, > 0 (0.5 for a 2:1 head)",
+            )?,
+        }),
+        "torispherical" => Ok(DomeShape::Torispherical {
+            crown_radius: need(crown.1, crown.0, "crown radius in mm, >= radius")?,
+            knuckle_radius: need(
+                knuckle.1,
+                knuckle.0,
+                "knuckle radius in mm, 0 < knuckle < radius",
+            )?,
+        }),
+        "isotensoid" => Ok(DomeShape::Isotensoid),
+        other => Err(WindingError::field(
+            field,
+            format!(
+                "unknown dome \"{other}\"; allowed: hemisphere, ellipsoid, torispherical, isotensoid"
+            ),
+        )),
+    }
+}
+
+impl MandrelSpec {
+    /// Builds the mandrel; `read` loads a file named by the job (a profile table).
+    pub fn build(
+        &self,
+        read: impl Fn(&str) -> Result<String, String>,
+    ) -> Result<Mandrel, WindingError> {
+        let kind = self.kind.as_deref().ok_or_else(|| {
+            WindingError::field(
+                "mandrel.kind",
+                "missing: one of cylinder, cone, vessel, profile",
+            )
+        })?;
+        let p = "mandrel";
+        match kind {
+            "cylinder" => Ok(Mandrel::Cylinder(
+                Cylinder::new(
+                    need("mandrel.radius", self.radius, "radius in mm, > 0")?,
+                    need("mandrel.length", self.length, "length in mm, > 0")?,
+                )
+                .map_err(|e| geom(p, e))?,
+            )),
+            "cone" => Ok(Mandrel::Cone(
+                Cone::new(
+                    need(
+                        "mandrel.radius_start",
+                        self.radius_start,
+                        "radius at z = 0 in mm, > 0",
+                    )?,
+                    need(
+                        "mandrel.radius_end",
+                        self.radius_end,
+                        "radius at z = length in mm, > 0",
+                    )?,
+                    need("mandrel.length", self.length, "length in mm, > 0")?,
+                )
+                .map_err(|e| geom(p, e))?,
+            )),
+            "vessel" => {
+                let radius = need("mandrel.radius", self.radius, "cylinder radius in mm, > 0")?;
+                let length = need("mandrel.cylinder_length", self.cylinder_length, "mm, >= 0")?;
+                let dome = self.dome.as_deref().unwrap_or("hemisphere");
+                let start = dome_shape(
+                    dome,
+                    "mandrel.dome",
+                    (self.axis_ratio, "mandrel.axis_ratio"),
+                    (self.crown_radius, "mandrel.crown_radius"),
+                    (self.knuckle_radius, "mandrel.knuckle_radius"),
+                )?;
+                let end = dome_shape(
+                    self.dome_end.as_deref().unwrap_or(dome),
+                    "mandrel.dome_end",
+                    (
+                        self.axis_ratio_end.or(self.axis_ratio),
+                        "mandrel.axis_ratio_end",
+                    ),
+                    (
+                        self.crown_radius_end.or(self.crown_radius),
+                        "mandrel.crown_radius_end",
+                    ),
+                    (
+                        self.knuckle_radius_end.or(self.knuckle_radius),
+                        "mandrel.knuckle_radius_end",
+                    ),
+                )?;
+                let po = need(
+                    "mandrel.polar_opening",
+                    self.polar_opening,
+                    "radius in mm, 0 < it < radius",
+                )?;
+                let po_end = self.polar_opening_end.unwrap_or(po);
+                Ok(Mandrel::Vessel(
+                    Vessel::new(radius, length, (start, po), (end, po_end))
+                        .map_err(|e| geom(p, e))?,
+                ))
+            }
+            "profile" => {
+                let file = self.file.as_deref().ok_or_else(|| {
+                    WindingError::field("mandrel.file", "missing: a CSV file of z,r points (mm)")
+                })?;
+                let text = read(file).map_err(|e| WindingError::field("mandrel.file", e))?;
+                let t = Tabulated::from_csv_str(&text, self.smoothing.unwrap_or(0.0))
+                    .map_err(|e| WindingError::field("mandrel.file", format!("{file}: {e}")))?;
+                Ok(Mandrel::Profile(t))
+            }
+            other => Err(WindingError::field(
+                "mandrel.kind",
+                format!("unknown kind \"{other}\"; allowed: cylinder, cone, vessel, profile"),
+            )),
+        }
+    }
+}
+
+impl WindingSpec {
+    /// The layer specification for `mandrel`.
+    pub fn layer_spec(&self, mandrel: &Mandrel) -> Result<LayerSpec, WindingError> {
+        let slippage = match (&self.mu, &self.mu_segments) {
+            (Some(_), Some(_)) => {
+                return Err(WindingError::field(
+                    "winding.mu",
+                    "give either mu or mu_segments, not both",
+                ));
+            }
+            (None, Some(segs)) => Slippage::Segments(
+                segs.iter()
+                    .map(|s| MuSegment {
+                        z_from: s.z_from,
+                        z_to: s.z_to,
+                        mu: s.mu,
+                    })
+                    .collect(),
+            ),
+            (None, None) | (Some(MuField::Number(0.0)), None) => Slippage::Geodesic,
+            (Some(MuField::Number(m)), None) => Slippage::Constant(*m),
+            (Some(MuField::Word(w)), None) => match w.as_str() {
+                "auto" => Slippage::Auto,
+                "minimax" => Slippage::Minimax,
+                "geodesic" => Slippage::Geodesic,
+                other => {
+                    return Err(WindingError::field(
+                        "winding.mu",
+                        format!(
+                            "\"{other}\" is not a slippage; allowed: a number, \"auto\", \"minimax\""
+                        ),
+                    ));
+                }
+            },
+        };
+        let ends = match mandrel {
+            Mandrel::Cylinder(_) | Mandrel::Cone(_) => {
+                let deg = need(
+                    "winding.winding_angle_deg",
+                    self.winding_angle_deg,
+                    "the winding angle at z = 0 for a tube, degrees in (0, 90)",
+                )?;
+                Ends::Tube {
+                    winding_angle: deg.to_radians(),
+                }
+            }
+            Mandrel::Vessel(v) => Ends::Poles {
+                start: v.start_dome().polar_opening(),
+                end: v.end_dome().polar_opening(),
+            },
+            Mandrel::Profile(t) => {
+                let (a, b) = t.z_range();
+                Ends::Poles {
+                    start: t.r(a),
+                    end: t.r(b),
+                }
+            }
+        };
+        let default_dwell = if mandrel.is_tube() { 180.0 } else { 0.0 };
+        let defaults = LayerSpec::default();
+        Ok(LayerSpec {
+            slippage,
+            ends,
+            band_width: need(
+                "winding.band_width",
+                self.band_width,
+                "band width in mm, > 0",
+            )?,
+            band_thickness: need(
+                "winding.band_thickness",
+                self.band_thickness,
+                "band thickness in mm, > 0",
+            )?,
+            overlap: self.overlap.unwrap_or(0.0),
+            pattern_number: self.pattern_number,
+            skip_index: self.skip_index,
+            dwell_min: self.dwell_min_deg.unwrap_or(default_dwell).to_radians(),
+            mu_limit: self.mu_limit.unwrap_or(defaults.mu_limit),
+            samples: match self.samples {
+                Some(n) if !(2..=10_000_000).contains(&n) => {
+                    return Err(WindingError::field(
+                        "winding.samples",
+                        "must be in [2, 10000000]",
+                    ));
+                }
+                Some(n) => n,
+                None => defaults.samples,
+            },
+            minimax_nodes: defaults.minimax_nodes,
+        })
+    }
+}

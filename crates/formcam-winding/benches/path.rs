@@ -1,7 +1,7 @@
 //! Speed of the path engine: a geodesic pass sampled at 1e5 points, a
 //! `mu = "auto"` pass, and the minimax search on a concave meridian.
 
-#![allow(clippy::expect_used)]
+#![allow(clippy::expect_used, missing_docs)]
 
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::hint::black_box;

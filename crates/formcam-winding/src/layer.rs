@@ -356,7 +356,16 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         }
     }
     if method == Method::Minimax {
-        let mm = minimax(m, spec.minimax_nodes, spec.mu_limit)?;
+        let mm = minimax(m, spec.minimax_nodes, spec.mu_limit).map_err(|e| {
+            if spec.slippage == Slippage::Auto && shot.is_none() {
+                WindingError::Shooting(format!(
+                    "no constant slippage within mu_limit = {} meets both polar openings, and {e}",
+                    spec.mu_limit
+                ))
+            } else {
+                e
+            }
+        })?;
         points = mm.points(m);
         start = PassEnd::TurnAround { z: za };
         end = PassEnd::TurnAround { z: zb };

@@ -159,11 +159,17 @@ pub fn minimax<M: Meridian>(
                 hi_m = mu_limit;
                 break;
             }
+            let concave = g.cb.iter().any(|c| *c > 0.0);
+            let why = if concave {
+                "needs more friction or lifts off the concave part (bridging)"
+            } else {
+                "needs more friction"
+            };
             return Err(WindingError::infeasible(
                 "winding.mu_limit",
                 format!(
                     "no band can lie on this meridian with |mu| <= {mu_limit}: every path between the \
-                     polar openings needs more friction or lifts off the concave part (bridging)"
+                     polar openings {why}"
                 ),
             ));
         }

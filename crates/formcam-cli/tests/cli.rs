@@ -1,0 +1,240 @@
+//! The command line as users meet it: outputs of good jobs, one-line errors for bad ones.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn formcam() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_formcam"))
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("formcam-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn examples() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
+}
+
+#[test]
+fn wind_path_writes_csv_and_summary() {
+    let out = scratch("good").join("out");
+    let st = formcam()
+        .args(["wind", "path"])
+        .arg(examples().join("vessel-geodesic.toml"))
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    let csv = std::fs::read_to_string(out.join("path.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header = lines.next().unwrap();
+    assert!(header.starts_with("s,z,r,v,alpha,c,mu"));
+    assert_eq!(lines.count(), 2001);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    for key in [
+        "turn_angle_pass_rad",
+        "turn_angle_circuit_rad",
+        "mu",
+        "alpha_equator_rad",
+        "circuits",
+        "fibre_length_mm",
+    ] {
+        assert!(summary.get(key).is_some(), "summary.json lacks {key}");
+    }
+    let alpha = 0.3f64.asin();
+    let expect = 2.0 * std::f64::consts::PI + 2.0 * 300.0 * alpha.tan() / 100.0;
+    let got = summary["turn_angle_circuit_rad"].as_f64().unwrap();
+    assert!((got - expect).abs() < 1e-9, "{got} vs {expect}");
+    assert!((summary["alpha_equator_rad"].as_f64().unwrap() - alpha).abs() < 1e-9);
+    assert_eq!(summary["mu"].as_f64().unwrap(), 0.0);
+    let circuits = summary["circuits"].as_u64().unwrap() as f64;
+    assert!(circuits >= (std::f64::consts::TAU * 100.0 * alpha.cos() / 10.0).floor());
+    // No temporary files are left behind.
+    let names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into())
+        .collect();
+    assert!(names.iter().all(|n| !n.ends_with(".tmp")), "{names:?}");
+}
+
+const VESSEL: &str = r#"
+[mandrel]
+kind = "vessel"
+radius = 100.0
+cylinder_length = 300.0
+dome = "hemisphere"
+polar_opening = 30.0
+"#;
+
+/// Runs a bad job; returns its one-line error after checking the exit code and
+/// that nothing was written.
+fn fails(name: &str, job: &str, extra: &[(&str, &str)]) -> String {
+    let dir = scratch(name);
+    let path = dir.join("job.toml");
+    std::fs::write(&path, job).unwrap();
+    for (f, text) in extra {
+        std::fs::write(dir.join(f), text).unwrap();
+    }
+    let out = dir.join("out");
+    let st = formcam()
+        .args(["wind", "path"])
+        .arg(&path)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(!st.status.success(), "{name}: should fail");
+    assert!(!out.exists(), "{name}: a failed run wrote output");
+    let err = String::from_utf8_lossy(&st.stderr).trim_end().to_string();
+    assert_eq!(err.lines().count(), 1, "{name}: not one line: {err}");
+    assert!(err.contains("job.toml"), "{name}: file not named: {err}");
+    err
+}
+
+#[test]
+fn bad_jobs_fail_with_one_line_naming_the_field() {
+    let w = "[winding]\nmu = 0.0\nband_width = 10.0\nband_thickness = 0.5\n";
+    let cases: Vec<(&str, String, &str)> = vec![
+        (
+            "unknown-kind",
+            format!("[mandrel]\nkind = \"sphere\"\nradius = 1.0\n{w}"),
+            "mandrel.kind",
+        ),
+        (
+            "missing-field",
+            format!("{VESSEL}[winding]\nmu = 0.0\nband_thickness = 0.5\n"),
+            "winding.band_width",
+        ),
+        (
+            "negative-width",
+            format!("{VESSEL}[winding]\nmu = 0.0\nband_width = -10.0\nband_thickness = 0.5\n"),
+            "winding.band_width",
+        ),
+        (
+            "opening-too-big",
+            format!(
+                "{}{w}",
+                VESSEL.replace("polar_opening = 30.0", "polar_opening = 120.0")
+            ),
+            "mandrel.polar_opening",
+        ),
+        (
+            "nan-radius",
+            format!("{}{w}", VESSEL.replace("radius = 100.0", "radius = nan")),
+            "mandrel.radius",
+        ),
+        (
+            "geodesic-unequal-openings",
+            format!("{VESSEL}polar_opening_end = 45.0\n{w}").replace("[winding]", "\n[winding]"),
+            "winding.mu",
+        ),
+        (
+            "mu-beyond-limit",
+            format!("{VESSEL}[winding]\nmu = 5.0\nband_width = 10.0\nband_thickness = 0.5\n"),
+            "winding.mu",
+        ),
+        (
+            "shooting-fails",
+            format!(
+                "{VESSEL}polar_opening_end = 45.0\n[winding]\nmu = \"auto\"\nmu_limit = 0.002\nband_width = 10.0\nband_thickness = 0.5\n"
+            ),
+            "winding.mu",
+        ),
+        (
+            "unknown-word",
+            format!("{VESSEL}[winding]\nmu = \"often\"\nband_width = 10.0\nband_thickness = 0.5\n"),
+            "winding.mu",
+        ),
+        (
+            "typo-field",
+            format!("{VESSEL}[winding]\nmu = 0.0\nband_widht = 10.0\nband_thickness = 0.5\n"),
+            "band_widht",
+        ),
+        (
+            "tube-without-angle",
+            format!("[mandrel]\nkind = \"cylinder\"\nradius = 50.0\nlength = 100.0\n{w}"),
+            "winding.winding_angle_deg",
+        ),
+        ("syntax", "[mandrel\nkind = 1".to_string(), "job.toml:1"),
+        ("missing-table", VESSEL.to_string(), "[winding]"),
+    ];
+    for (name, job, field) in cases {
+        let err = fails(name, &job, &[]);
+        assert!(
+            err.contains(field),
+            "{name}: field {field} not named in: {err}"
+        );
+    }
+}
+
+#[test]
+fn bad_profiles_and_concave_meridians_fail_cleanly() {
+    let prof = "[mandrel]\nkind = \"profile\"\nfile = \"m.csv\"\n[winding]\nmu = \"minimax\"\nmu_limit = 0.02\nband_width = 10.0\nband_thickness = 0.5\n";
+    let waist = std::fs::read_to_string(examples().join("waist-meridian.csv")).unwrap();
+    let err = fails("no-band", prof, &[("m.csv", &waist)]);
+    assert!(
+        err.contains("winding.mu_limit") && err.contains("no band can lie"),
+        "{err}"
+    );
+    let err = fails(
+        "non-monotonic",
+        prof,
+        &[("m.csv", "z,r\n0,10\n1,20\n3,25\n2,24\n4,10\n")],
+    );
+    assert!(
+        err.contains("mandrel.file") && err.contains("row 4"),
+        "{err}"
+    );
+    let err = fails("too-few", prof, &[("m.csv", "z,r\n0,10\n1,20\n2,10\n")]);
+    assert!(err.contains("mandrel.file") && err.contains("4"), "{err}");
+    let err = fails("missing-file", prof, &[]);
+    assert!(err.contains("mandrel.file"), "{err}");
+}
+
+#[test]
+fn demo_runs_every_example() {
+    let out = scratch("demo").join("out");
+    let st = formcam()
+        .arg("demo")
+        .arg("--examples")
+        .arg(examples())
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    let jobs = std::fs::read_dir(examples())
+        .unwrap()
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .path()
+                .extension()
+                .is_some_and(|x| x == "toml")
+        })
+        .count();
+    assert!(jobs >= 6);
+    for e in std::fs::read_dir(examples()).unwrap() {
+        let p = e.unwrap().path();
+        if p.extension().is_some_and(|x| x == "toml") {
+            let name = p.file_stem().unwrap();
+            assert!(out.join(name).join("summary.json").exists(), "{name:?}");
+            assert!(out.join(name).join("path.csv").exists(), "{name:?}");
+        }
+    }
+}

@@ -196,6 +196,18 @@ impl Dome {
             Profile::Isotensoid(iso) => iso.eval_w(w),
         }
     }
+
+    /// `r(w)` alone (cheaper than [`Dome::eval_w`] for the analytic shapes).
+    pub fn r_w(&self, w: f64) -> f64 {
+        match &self.profile {
+            Profile::Sphere { radius } => (radius * radius - w * w).sqrt(),
+            Profile::Ellipse { a, b } => {
+                let u = w / b;
+                a * (1.0 - u * u).sqrt()
+            }
+            Profile::Torus { .. } | Profile::Isotensoid(_) => self.eval_w(w).r,
+        }
+    }
 }
 
 /// Upper half of a circle of radius `rho` centred at `(w0, r0)`, as `r(w)`.

@@ -106,6 +106,17 @@ impl Meridian for Vessel {
         }
     }
 
+    fn r(&self, z: f64) -> f64 {
+        let (z1, z2) = self.cylinder_range();
+        if z < z1 {
+            self.start.r_w(z1 - z)
+        } else if z <= z2 {
+            self.radius()
+        } else {
+            self.end.r_w(z - z2)
+        }
+    }
+
     fn breakpoints(&self) -> Vec<f64> {
         let (z1, z2) = self.cylinder_range();
         let mut v: Vec<f64> = self.start.joints().iter().rev().map(|w| z1 - w).collect();

@@ -310,8 +310,9 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         ),
         (Slippage::Auto, Ends::Poles { .. }) => match shoot(m, spec.mu_limit) {
             Ok(s) => {
+                let mu = s.mu;
                 shot = Some(s);
-                (Method::Shooting, MuLaw::Constant(s.mu), FRAC_PI_2)
+                (Method::Shooting, MuLaw::Constant(mu), FRAC_PI_2)
             }
             Err(e) => {
                 warnings.push(format!("{e}; the minimax search was used instead"));
@@ -327,7 +328,10 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
     let mut start = PassEnd::TurnAround { z: za };
     let mut end = PassEnd::TurnAround { z: zb };
     if method != Method::Minimax {
-        let tr = trace(m, &law, alpha0, &TraceOptions::default())?;
+        let tr = match &shot {
+            Some(s) => s.trace.clone(),
+            None => trace(m, &law, alpha0, &TraceOptions::default())?,
+        };
         points = tr.sample(m, &law, samples);
         if alpha0 < FRAC_PI_2 {
             start = PassEnd::Exit {
@@ -473,8 +477,8 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         length_mm: last.s,
         turn_angle_surface_rad: surface_turn,
         turn_angle_boss_rad: boss,
-        boundary_residual_mm: shot.map(|s| s.residual_mm),
-        shooting_evaluations: shot.map(|s| s.evaluations),
+        boundary_residual_mm: shot.as_ref().map(|s| s.residual_mm),
+        shooting_evaluations: shot.as_ref().map(|s| s.evaluations),
         bridging_active: minimax_info.map(|x| x.1).unwrap_or_default(),
         bridging_margin_mm,
     };

@@ -286,15 +286,20 @@ impl<const N: usize, F: FnMut(f64, &[f64; N]) -> [f64; N]> Integrator<N, F> {
 /// Finds `t` in `[a, b]` where `g` changes sign (`g(a)`, `g(b)` of opposite signs),
 /// by the Illinois variant of regula falsi, until the bracket is narrower than
 /// `xtol` or `|g| <= ftol`.
-pub fn find_root(
+pub fn find_root(mut g: impl FnMut(f64) -> f64, a: f64, b: f64, xtol: f64, ftol: f64) -> f64 {
+    let fa = g(a);
+    let fb = g(b);
+    find_root_known(g, (a, fa), (b, fb), xtol, ftol)
+}
+
+/// [`find_root`] with `g` already known at both ends of the bracket.
+pub fn find_root_known(
     mut g: impl FnMut(f64) -> f64,
-    mut a: f64,
-    mut b: f64,
+    (mut a, mut fa): (f64, f64),
+    (mut b, mut fb): (f64, f64),
     xtol: f64,
     ftol: f64,
 ) -> f64 {
-    let mut fa = g(a);
-    let mut fb = g(b);
     if fa == 0.0 {
         return a;
     }

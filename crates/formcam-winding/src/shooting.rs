@@ -129,12 +129,15 @@ pub fn shoot<M: Meridian>(m: &M, mu_limit: f64) -> Result<Shot, WindingError> {
     })
 }
 
+/// A point `(mu, miss)` of the miss function.
+type Sample = (f64, f64);
+
 /// A bracket `[a, b]` of the sign change of `f` (with `f(0) = f0`), within `±mu_limit`.
 fn bracket(
     f: &mut impl FnMut(f64) -> f64,
     f0: f64,
     mu_limit: f64,
-) -> Result<((f64, f64), (f64, f64)), WindingError> {
+) -> Result<(Sample, Sample), WindingError> {
     // Secant-guided first.
     let (mut x0, mut g0) = (0.0, f0);
     let mut x1 = 0.01f64.min(mu_limit);

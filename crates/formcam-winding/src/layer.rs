@@ -288,7 +288,14 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
                     ),
                 ));
             }
-            let a0 = (start / m.r(za)).clamp(-1.0, 1.0).asin();
+            // The path is tangent to the opening when the meridian starts at it; compare
+            // with a tolerance, since asin near 1 turns a rounding error of 1e-16 into 1e-8.
+            let r0 = m.r(za);
+            let a0 = if (r0 - start).abs() <= 1e-12 * r0 {
+                FRAC_PI_2
+            } else {
+                (start / r0).clamp(-1.0, 1.0).asin()
+            };
             (Method::Geodesic, MuLaw::Constant(0.0), a0)
         }
         (Slippage::Geodesic, Ends::Tube { winding_angle }) => {

@@ -19,8 +19,8 @@ pub struct Tolerance {
 impl Default for Tolerance {
     fn default() -> Self {
         Self {
-            rtol: 1e-12,
-            atol: 1e-12,
+            rtol: 1e-13,
+            atol: 1e-13,
             h_max: f64::INFINITY,
             max_steps: 200_000,
         }

@@ -109,7 +109,7 @@ fn tube_pattern_closes_with_the_dwell() {
     let target = TAU * f64::from(pat.step) / f64::from(pat.circuits);
     let d = (total - target).rem_euclid(TAU);
     assert!(
-        d < 1e-9 || d > TAU - 1e-9,
+        !(1e-9..=TAU - 1e-9).contains(&d),
         "circuit turn {total} vs band position {target}"
     );
     // Thickness: two plies of n bands over the circumference.

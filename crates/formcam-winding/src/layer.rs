@@ -377,7 +377,7 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
                 e
             }
         })?;
-        points = mm.points(m);
+        points = resample(&mm.points(m), samples);
         start = PassEnd::TurnAround { z: za };
         end = PassEnd::TurnAround { z: zb };
         minimax_info = Some((mm.mu_max, mm.bridging_active));
@@ -511,4 +511,45 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         report,
         warnings,
     })
+}
+
+/// `n` points evenly spaced in path length, interpolated linearly between the
+/// points of a dense path (the minimax grid), ends kept exactly.
+fn resample(pts: &[PathPoint], n: usize) -> Vec<PathPoint> {
+    let (Some(first), Some(last)) = (pts.first(), pts.last()) else {
+        return Vec::new();
+    };
+    let total = last.s;
+    let mut out = Vec::with_capacity(n);
+    let mut i = 0;
+    for k in 0..n {
+        let s = total * k as f64 / (n - 1).max(1) as f64;
+        while i + 2 < pts.len() && pts[i + 1].s < s {
+            i += 1;
+        }
+        let p = if k == 0 {
+            *first
+        } else if k + 1 == n {
+            *last
+        } else {
+            let (a, b) = (pts[i], pts[(i + 1).min(pts.len() - 1)]);
+            let t = if b.s > a.s {
+                ((s - a.s) / (b.s - a.s)).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let lerp = |x: f64, y: f64| x + t * (y - x);
+            PathPoint {
+                s,
+                z: lerp(a.z, b.z),
+                r: lerp(a.r, b.r),
+                v: lerp(a.v, b.v),
+                alpha: lerp(a.alpha, b.alpha),
+                c: lerp(a.c, b.c),
+                mu: if t < 0.5 { a.mu } else { b.mu },
+            }
+        };
+        out.push(p);
+    }
+    out
 }

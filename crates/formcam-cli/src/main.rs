@@ -2,6 +2,7 @@
 //! library crates and writes their outputs atomically.
 
 mod output;
+mod plot;
 mod wind;
 
 use std::path::PathBuf;

@@ -111,9 +111,20 @@ fn summary_json(job: &Path, kind: &str, layer: &Layer) -> Result<Vec<u8>, CliErr
 pub fn run_path(job: &Path, out: &Path) -> Result<String, CliError> {
     let t0 = Instant::now();
     let (mandrel, layer) = plan(job)?;
+    let title = format!(
+        "{}: {} mandrel, one pass",
+        job.file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default(),
+        mandrel.kind()
+    );
     let files = [
         ("path.csv", path_csv(&layer)),
         ("summary.json", summary_json(job, mandrel.kind(), &layer)?),
+        (
+            "path.svg",
+            crate::plot::layer_svg(&title, &mandrel, &layer)?,
+        ),
     ];
     write_all(out, &files)?;
     let mut line = format!(

@@ -235,6 +235,11 @@ fn demo_runs_every_example() {
             let name = p.file_stem().unwrap();
             assert!(out.join(name).join("summary.json").exists(), "{name:?}");
             assert!(out.join(name).join("path.csv").exists(), "{name:?}");
+            let svg = std::fs::read_to_string(out.join(name).join("path.svg")).unwrap();
+            assert!(
+                svg.starts_with("<svg") && svg.contains("polyline"),
+                "{name:?}"
+            );
         }
     }
 }

@@ -130,6 +130,19 @@ pub fn trace<M: Meridian>(
     let mut steps: Vec<Step<3>> = Vec::new();
     let mut t = 0.0;
     let mut y = [za, 0.0, alpha0];
+    // A pass that starts at a turn-around must move into the mandrel: alpha has to
+    // fall below pi/2, i.e. the meridian must rise faster than the slippage lets it turn.
+    if alpha0 >= FRAC_PI_2 && rhs(m, law, &y)[2] >= 0.0 {
+        return Err(WindingError::infeasible(
+            "winding.mu",
+            format!(
+                "the pass cannot leave the start opening at z = {za:.3} mm: the meridian's slope \
+                 r' = {:.4} there must exceed the slippage mu = {:.4}",
+                m.dr(za),
+                law.at(za)
+            ),
+        ));
+    }
     let mut h0 = 1e-3 * scale;
     loop {
         let next_cut = cuts.iter().copied().find(|c| *c > y[0] + 1e-12);
@@ -150,6 +163,10 @@ pub fn trace<M: Meridian>(
                     steps.push(*st);
                     if !opts.exit_at_end && st.y1[0] > zb + opts.overrun {
                         ev = Some(Event::Overrun);
+                        return Control::Stop;
+                    }
+                    if st.y1[0] < za - 1e-9 * scale {
+                        ev = Some(Event::Backwards);
                         return Control::Stop;
                     }
                     Control::Continue
@@ -192,6 +209,15 @@ pub fn trace<M: Meridian>(
                     last: y,
                 });
             }
+            Some(Event::Backwards) => {
+                return Err(WindingError::infeasible(
+                    "winding.mu",
+                    format!(
+                        "the path turns back and leaves the mandrel through its start (z = {za:.3} mm); \
+                         the slippage is too large for this meridian"
+                    ),
+                ));
+            }
             Some(Event::Overrun) | None => {
                 return Ok(Trace {
                     steps,
@@ -213,6 +239,7 @@ enum Event {
     Turn,
     Exit,
     Overrun,
+    Backwards,
 }
 
 /// The earliest event inside an accepted step, if any.

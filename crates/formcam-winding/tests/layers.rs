@@ -190,3 +190,35 @@ proptest! {
         }
     }
 }
+
+/// A meridian that is flat where the pass should start: no band can leave it.
+struct FlatStart;
+
+impl Meridian for FlatStart {
+    fn z_range(&self) -> (f64, f64) {
+        (0.0, 100.0)
+    }
+    fn eval(&self, z: f64) -> formcam_geom::Jet {
+        let u = z / 100.0;
+        formcam_geom::Jet {
+            r: 60.0 - 30.0 * u * u,
+            dr: -0.6 * u,
+            d2r: -0.006,
+        }
+    }
+}
+
+#[test]
+fn a_pass_that_cannot_leave_its_start_is_refused() {
+    let spec = LayerSpec {
+        slippage: Slippage::Constant(0.05),
+        ends: Ends::Poles {
+            start: 60.0,
+            end: 30.0,
+        },
+        ..LayerSpec::default()
+    };
+    let e = plan_layer(&FlatStart, &spec).unwrap_err();
+    assert!(e.to_string().contains("winding.mu"), "{e}");
+    assert!(e.to_string().contains("start opening"), "{e}");
+}

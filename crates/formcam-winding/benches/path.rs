@@ -53,8 +53,7 @@ fn benches(c: &mut Criterion) {
         b.iter(|| {
             let shot = shoot(&v2, 0.6).expect("shoot");
             let law = MuLaw::Constant(shot.mu);
-            let tr = trace(&v2, &law, FRAC_PI_2, &opts).expect("trace");
-            black_box(tr.sample(&v2, &law, 100_000))
+            black_box(shot.trace.sample(&v2, &law, 100_000))
         })
     });
     c.bench_function("minimax on a concave meridian, 4000 nodes", |b| {

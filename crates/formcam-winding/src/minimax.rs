@@ -197,7 +197,8 @@ pub fn minimax<M: Meridian>(
             } else {
                 lo_m = mid;
             }
-            if hi_m - lo_m <= 1e-10 * hi_m {
+            // Far below the grid's own discretisation error (about 1e-5 relative).
+            if hi_m - lo_m <= 1e-8 * hi_m {
                 break;
             }
         }

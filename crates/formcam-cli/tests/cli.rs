@@ -59,7 +59,10 @@ fn wind_path_writes_csv_and_summary() {
     assert!((summary["alpha_equator_rad"].as_f64().unwrap() - alpha).abs() < 1e-9);
     assert_eq!(summary["mu"].as_f64().unwrap(), 0.0);
     let circuits = summary["circuits"].as_u64().unwrap() as f64;
-    assert!(circuits >= (std::f64::consts::TAU * 100.0 * alpha.cos() / 10.0).floor());
+    assert_eq!(
+        circuits,
+        (std::f64::consts::TAU * 100.0 * alpha.cos() / 10.0).ceil()
+    );
     // No temporary files are left behind.
     let names: Vec<String> = std::fs::read_dir(&out)
         .unwrap()

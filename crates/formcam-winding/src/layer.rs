@@ -6,7 +6,7 @@ use formcam_geom::Meridian;
 use serde::Serialize;
 
 use crate::minimax::{bridging_limit, minimax};
-use crate::path::{PassEnd, TraceOptions, trace};
+use crate::path::{PassEnd, TANGENT_ALPHA_TOL, TraceOptions, trace};
 use crate::pattern::{Pattern, PatternRequest, choose_pattern};
 use crate::shooting::shoot;
 use crate::{MuLaw, MuSegment, PathPoint, WindingError};
@@ -186,7 +186,7 @@ pub struct Layer {
     pub warnings: Vec<String>,
 }
 
-fn check_spec(spec: &LayerSpec) -> Result<(), WindingError> {
+fn check_spec(spec: &LayerSpec, (za, zb): (f64, f64)) -> Result<(), WindingError> {
     let pos = |field: &str, v: f64| {
         if v.is_finite() && v > 0.0 {
             Ok(())
@@ -222,6 +222,27 @@ fn check_spec(spec: &LayerSpec) -> Result<(), WindingError> {
             if !(s.z_from.is_finite() && s.z_to.is_finite() && s.z_from < s.z_to) {
                 return Err(WindingError::field(f, "needs finite z_from < z_to"));
             }
+            if s.z_to <= za || s.z_from >= zb {
+                return Err(WindingError::field(
+                    f,
+                    format!(
+                        "[{}, {}] lies outside the mandrel [{za:.3}, {zb:.3}] mm",
+                        s.z_from, s.z_to
+                    ),
+                ));
+            }
+            if let Some(prev) = i.checked_sub(1).and_then(|j| segs.get(j))
+                && s.z_from < prev.z_to
+            {
+                return Err(WindingError::field(
+                    f,
+                    format!(
+                        "starts at {} mm, inside the previous segment (to {} mm): segments must be in \
+                         order of z and must not overlap",
+                        s.z_from, prev.z_to
+                    ),
+                ));
+            }
             if !s.mu.is_finite() || s.mu.abs() > spec.mu_limit {
                 return Err(WindingError::field(
                     format!("{f}.mu"),
@@ -246,6 +267,20 @@ fn check_spec(spec: &LayerSpec) -> Result<(), WindingError> {
     Ok(())
 }
 
+/// Points of the dense sampling behind the report (equator, thickness, bridging).
+const DENSE: usize = 4001;
+
+/// How far before the far opening a turn still counts as at the opening, mm.
+const FAR_TOL_MM: f64 = 1e-3;
+
+/// The job field that sets the slippage.
+fn slippage_field(s: &Slippage) -> &'static str {
+    match s {
+        Slippage::Segments(_) => "winding.mu_segments",
+        _ => "winding.mu",
+    }
+}
+
 /// Smallest `C - C_b` on concave parts and the first `z` where it is negative.
 fn bridging_margin(m: &impl Meridian, pts: &[PathPoint]) -> (Option<f64>, Option<f64>) {
     let mut margin: Option<f64> = None;
@@ -265,7 +300,8 @@ fn bridging_margin(m: &impl Meridian, pts: &[PathPoint]) -> (Option<f64>, Option
 
 /// Plans one layer on mandrel `m`.
 pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, WindingError> {
-    check_spec(spec)?;
+    check_spec(spec, m.z_range())?;
+    let tube = matches!(spec.ends, Ends::Tube { .. });
     let (za, zb) = m.z_range();
     let mut warnings = Vec::new();
     let samples = spec.samples.max(2);
@@ -290,11 +326,12 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
             }
             // The path is tangent to the opening when the meridian starts at it; compare
             // with a tolerance, since asin near 1 turns a rounding error of 1e-16 into 1e-8.
-            let r0 = m.r(za);
-            let a0 = if (r0 - start).abs() <= 1e-12 * r0 {
+            let a0 = (start / m.r(za)).clamp(-1.0, 1.0).asin();
+            // Within a hair of tangent is tangent, as at the far end (see `trace`).
+            let a0 = if a0 > FRAC_PI_2 - TANGENT_ALPHA_TOL {
                 FRAC_PI_2
             } else {
-                (start / r0).clamp(-1.0, 1.0).asin()
+                a0
             };
             (Method::Geodesic, MuLaw::Constant(0.0), a0)
         }
@@ -331,6 +368,8 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         }
     };
 
+    // `dense` drives every figure of the report; `points` are what the user asked for.
+    let mut dense = Vec::new();
     let mut points = Vec::new();
     let mut start = PassEnd::TurnAround { z: za };
     let mut end = PassEnd::TurnAround { z: zb };
@@ -339,7 +378,12 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
             Some(s) => s.trace.clone(),
             None => trace(m, &law, alpha0, &TraceOptions::default())?,
         };
-        points = tr.sample(m, &law, samples);
+        dense = tr.sample(m, &law, samples.max(DENSE));
+        points = if samples >= DENSE {
+            dense.clone()
+        } else {
+            tr.sample(m, &law, samples)
+        };
         if alpha0 < FRAC_PI_2 {
             start = PassEnd::Exit {
                 z: za,
@@ -347,7 +391,7 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
             };
         }
         end = tr.end;
-        let (_, bad) = bridging_margin(m, &points);
+        let (_, bad) = bridging_margin(m, &dense);
         if let Some(zbad) = bad {
             if spec.slippage == Slippage::Auto {
                 warnings.push(format!(
@@ -377,7 +421,8 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
                 e
             }
         })?;
-        points = resample(&mm.points(m), samples);
+        dense = mm.points(m);
+        points = resample(&dense, samples);
         start = PassEnd::TurnAround { z: za };
         end = PassEnd::TurnAround { z: zb };
         minimax_info = Some((mm.mu_max, mm.bridging_active));
@@ -396,16 +441,25 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
                 ),
             ));
         }
-        (Ends::Poles { .. }, PassEnd::TurnAround { z }) if z < zb - 1e-6 => {
-            warnings.push(format!(
-                "the pass turns at z = {z:.3} mm, before the far polar opening at {zb:.3} mm"
+        (Ends::Poles { .. }, PassEnd::TurnAround { z }) if z < zb - FAR_TOL_MM => {
+            return Err(WindingError::infeasible(
+                slippage_field(&spec.slippage),
+                format!(
+                    "the pass turns at z = {z:.3} mm, before the far polar opening at {zb:.3} mm; \
+                     use mu = \"auto\" to meet both openings"
+                ),
             ));
         }
-        (Ends::Poles { .. }, PassEnd::Exit { alpha, .. }) if alpha < FRAC_PI_2 - 0.2 => {
-            warnings.push(format!(
-                "the pass reaches the far end at a winding angle of {:.2} deg: the band would leave the \
-                 mandrel there",
-                alpha.to_degrees()
+        (Ends::Poles { end: opening, .. }, PassEnd::Exit { alpha, .. })
+            if m.r(zb) - opening <= 1e-6 * m.r(zb) =>
+        {
+            return Err(WindingError::infeasible(
+                slippage_field(&spec.slippage),
+                format!(
+                    "the band reaches the far polar opening at a winding angle of {:.2} deg and would \
+                     leave the mandrel there; use mu = \"auto\" to meet both openings",
+                    alpha.to_degrees()
+                ),
             ));
         }
         _ => {}
@@ -434,10 +488,10 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
     let turn_circuit = 2.0 * turn_pass;
 
     // Equator and pattern.
-    let eq = points
+    let eq = dense
         .iter()
         .copied()
-        .fold(points[0], |a, p| if p.r > a.r { p } else { a });
+        .fold(dense[0], |a, p| if p.r > a.r { p } else { a });
     let pattern = choose_pattern(&PatternRequest {
         band_width: spec.band_width,
         overlap: spec.overlap,
@@ -449,32 +503,42 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         skip_index: spec.skip_index,
     })?;
     let n = f64::from(pattern.circuits);
-    // Dwell arcs: the band wraps the turn-around parallel while the mandrel dwells.
-    let dwell_arc = 0.5 * pattern.dwell_rad * (last.c.abs() + points[0].c.abs());
+    // Dwell arcs: while the mandrel dwells the band wraps the turn-around parallel
+    // (radius C at a polar turn or boss) or the tube's end (radius r).
+    let wrap = |p: &PathPoint| if tube { p.r } else { p.c.abs() };
+    let dwell_arc = 0.5 * pattern.dwell_rad * (wrap(&last) + wrap(&dense[0]));
     let circuit_len = 2.0 * pass_len + dwell_arc;
 
     // Thickness along the meridian: two plies, n bands of width b across a parallel
-    // of circumference 2 pi r at angle alpha; capped one band width from the turn.
-    let r_turn = points
+    // of circumference 2 pi r at angle alpha. Near a turn-around cos(alpha) -> 0 and the
+    // formula diverges; within one band width of the turn radius it is held at its
+    // value one band width out (tubes have no turn-around on the mandrel).
+    let t_at = |r: f64, alpha: f64| {
+        2.0 * spec.band_thickness * n * spec.band_width / (TAU * r * alpha.cos().max(1e-12))
+    };
+    let r_turn = dense
         .iter()
         .map(|p| p.c)
         .fold(f64::INFINITY, f64::min)
         .max(1e-9);
-    let r_cap = r_turn + spec.band_width;
-    let t_at = |r: f64, alpha: f64| {
-        2.0 * spec.band_thickness * n * spec.band_width / (TAU * r * alpha.cos().max(1e-12))
+    let r_cap = (r_turn + spec.band_width).min(eq.r);
+    let cap = t_at(r_cap, (r_turn / r_cap).clamp(-1.0, 1.0).asin());
+    let thick = |p: &PathPoint| {
+        if !tube && p.r < r_cap {
+            t_at(p.r, p.alpha).min(cap)
+        } else {
+            t_at(p.r, p.alpha)
+        }
     };
-    let c_turn = r_turn;
-    let cap = t_at(r_cap, (c_turn / r_cap).clamp(-1.0, 1.0).asin());
-    let thickness: Vec<f64> = points.iter().map(|p| t_at(p.r, p.alpha).min(cap)).collect();
-    let thickness_max = thickness.iter().copied().fold(0.0, f64::max);
+    let thickness: Vec<f64> = points.iter().map(thick).collect();
+    let thickness_max = dense.iter().map(thick).fold(0.0, f64::max);
 
     let (mu_const, mu_max_abs) = match (method, &law) {
         (Method::Minimax, _) => (None, minimax_info.as_ref().map_or(0.0, |x| x.0)),
         (_, MuLaw::Constant(mu)) => (Some(*mu), mu.abs()),
         (_, l) => (None, l.max_abs()),
     };
-    let (bridging_margin_mm, _) = bridging_margin(m, &points);
+    let (bridging_margin_mm, _) = bridging_margin(m, &dense);
     let pass = PassSummary {
         method,
         mu: mu_const,

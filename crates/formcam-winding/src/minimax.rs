@@ -34,7 +34,7 @@ pub struct MinimaxPath {
     pub c_bridge: Vec<f64>,
     /// Slippage on each interval `[z_i, z_i+1]` (the last node repeats the last interval).
     pub mu: Vec<f64>,
-    /// The optimal worst-case slippage `max |mu|`.
+    /// The optimal worst-case slippage `max |mu|` (the bisection's smallest feasible bound).
     pub mu_max: f64,
     /// `z` intervals where the path lies on the bridging limit (within 1e-6 of the radius).
     pub bridging_active: Vec<(f64, f64)>,
@@ -160,7 +160,18 @@ pub fn minimax<M: Meridian>(
 ) -> Result<MinimaxPath, WindingError> {
     let g = Grid::new(m, nodes.max(16));
     let n = g.n();
-    let mut hi_m = 1e-3;
+    let (za, zb) = m.z_range();
+    let (s0, s1) = (g.node[0].dr, g.node[n].dr);
+    if !(s0 > 0.0 && s1 < 0.0) {
+        return Err(WindingError::infeasible(
+            "winding.mu",
+            format!(
+                "the path must turn at both ends of the meridian, which needs it to narrow towards \
+                 them: r' > 0 at z = {za:.3} mm and r' < 0 at z = {zb:.3} mm (got {s0:.4} and {s1:.4})"
+            ),
+        ));
+    }
+    let mut hi_m = 1e-3f64.min(mu_limit);
     while !g.feasible(hi_m) {
         hi_m *= 2.0;
         if hi_m > mu_limit {
@@ -230,14 +241,29 @@ pub fn minimax<M: Meridian>(
             0.5 * (lo + hi)
         };
     }
-    c[n] = g.node[n].r;
+    // A turn-around inside the pass (C = r) would wind hoops forever: not a pass.
+    if let Some(i) = (1..n).find(|&i| g.node[i].r - c[i] <= 1e-9 * g.node[i].r) {
+        return Err(WindingError::infeasible(
+            "winding.mu",
+            format!(
+                "the least-slippage path touches a turn-around inside the mandrel at z = {:.3} mm \
+                 (C = r): the band cannot run from one polar opening to the other on this meridian",
+                g.z[i]
+            ),
+        ));
+    }
+    // Slippage per interval: dC over the integral of B (Simpson), which stays
+    // accurate where B vanishes at a touch of the bridging limit.
     let mut mu: Vec<f64> = (0..n)
         .map(|i| {
             let cm = 0.5 * (c[i] + c[i + 1]);
-            let b = b_factor(&g.mid[i], cm);
+            let bint = (b_factor(&g.node[i], c[i])
+                + 4.0 * b_factor(&g.mid[i], cm)
+                + b_factor(&g.node[i + 1], c[i + 1]))
+                / 6.0;
             let dc = (c[i + 1] - c[i]) / (g.z[i + 1] - g.z[i]);
-            if b > 0.0 {
-                dc / b
+            if bint > 0.0 {
+                dc / bint
             } else if dc == 0.0 {
                 0.0
             } else {
@@ -246,7 +272,8 @@ pub fn minimax<M: Meridian>(
         })
         .collect();
     mu.push(*mu.last().unwrap_or(&0.0));
-    let mu_max = mu.iter().fold(0.0f64, |a, m| a.max(m.abs()));
+    // The optimum is the smallest feasible worst-case slippage of the bisection.
+    let mu_max = hi_m;
     let rmax = g.node.iter().fold(0.0f64, |a, j| a.max(j.r));
     let mut bridging_active = Vec::new();
     let mut open: Option<f64> = None;

@@ -198,8 +198,10 @@ pub enum Outcome {
     Stopped,
     /// Reached `t_end`.
     Reached,
-    /// The step size fell below what the tolerance can resolve, or the step budget ran out.
+    /// The step size fell below what the tolerance can resolve.
     Failed,
+    /// The step budget ran out.
+    TooManySteps,
 }
 
 /// An adaptive integrator from `t0` towards `t_end`.
@@ -279,7 +281,7 @@ impl<const N: usize, F: FnMut(f64, &[f64; N]) -> [f64; N]> Integrator<N, F> {
             };
             h = (h * fac).min(tol.h_max).min(t_end - t);
         }
-        (Outcome::Failed, t, y)
+        (Outcome::TooManySteps, t, y)
     }
 }
 

@@ -169,15 +169,30 @@ pub fn trace<M: Meridian>(
                         ev = Some(Event::Backwards);
                         return Control::Stop;
                     }
+                    if st.y1[2] < 0.0 {
+                        ev = Some(Event::NegativeClairaut(st.y1[0]));
+                        return Control::Stop;
+                    }
                     Control::Continue
                 }
             }
         });
+        if outcome == Outcome::TooManySteps {
+            return Err(WindingError::Integration {
+                z: y1[0],
+                reason: format!(
+                    "the pass needs more than {} integration steps: it is too long for its mandrel \
+                     (a winding angle too close to 90 deg?)",
+                    tol.max_steps
+                ),
+            });
+        }
         if outcome == Outcome::Failed || ev.is_none() {
             return Err(WindingError::Integration {
                 z: y1[0],
                 reason:
-                    "the step size collapsed (the meridian or slippage makes the path singular)"
+                    "the step size collapsed: the meridian's slope is nearly infinite there or the \
+                         slippage makes the path singular"
                         .into(),
             });
         }
@@ -209,6 +224,15 @@ pub fn trace<M: Meridian>(
                     last: y,
                 });
             }
+            Some(Event::NegativeClairaut(z)) => {
+                return Err(WindingError::infeasible(
+                    "winding.mu",
+                    format!(
+                        "the Clairaut function r sin(alpha) becomes negative near z = {z:.3} mm: the \
+                         path would reverse its turn about the axis (eq. 6 needs C >= 0); reduce |mu|"
+                    ),
+                ));
+            }
             Some(Event::Backwards) => {
                 return Err(WindingError::infeasible(
                     "winding.mu",
@@ -233,6 +257,12 @@ pub fn trace<M: Meridian>(
     }
 }
 
+/// A path that reaches the meridian's end with `alpha` this close to `pi/2` (rad)
+/// is tangent there: it turns within a hair (`r - C < 5e-9 r`), not exits. Near a
+/// turn-around `pi/2 - alpha` grows as the square root of the distance, so a
+/// converged shot meets the end with `pi/2 - alpha` about 1e-5.
+pub const TANGENT_ALPHA_TOL: f64 = 1e-4;
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Event {
     Cut(f64),
@@ -240,6 +270,7 @@ enum Event {
     Exit,
     Overrun,
     Backwards,
+    NegativeClairaut(f64),
 }
 
 /// The earliest event inside an accepted step, if any.
@@ -276,7 +307,7 @@ fn first_event(
     if opts.exit_at_end && st.y0[0] < z_end && st.y1[0] >= z_end {
         let ts = find_root(|t| st.at(t)[0] - z_end, st.t0, st.t1(), xtol, 0.0);
         // A path that would turn within a hair of the end is a turn-around, not an exit.
-        if st.at(ts)[2] < FRAC_PI_2 - 1e-4 {
+        if st.at(ts)[2] < FRAC_PI_2 - TANGENT_ALPHA_TOL {
             consider(ts, Event::Exit);
         }
     }

@@ -62,19 +62,28 @@ fn gcd(a: u32, b: u32) -> u32 {
     if b == 0 { a } else { gcd(b, a % b) }
 }
 
-/// `(p, k)` of step `q` in a layer of `n` circuits.
+/// Inverse of `q` modulo `n` (extended Euclid), if `gcd(q, n) = 1`.
+fn inverse(q: u32, n: u32) -> Option<u32> {
+    let (mut a, mut b) = (i64::from(q), i64::from(n));
+    let (mut x0, mut x1) = (1i64, 0i64);
+    while b != 0 {
+        let t = a / b;
+        (a, b) = (b, a - t * b);
+        (x0, x1) = (x1, x0 - t * x1);
+    }
+    (a == 1).then(|| x0.rem_euclid(i64::from(n)) as u32)
+}
+
+/// `(p, k)` of step `q` (coprime with `n`) in a layer of `n` circuits: the
+/// fewest circuits `p` with `p q ≡ ±1 (mod n)`, and the turns `k` they make.
 fn pattern_of(q: u32, n: u32) -> (u32, u32) {
     if n <= 2 {
         return (1, q);
     }
-    for j in 1..=n {
-        let rem = (u64::from(j) * u64::from(q)) % u64::from(n);
-        if rem == 1 || rem == u64::from(n - 1) {
-            let k = ((f64::from(j) * f64::from(q)) / f64::from(n)).round() as u32;
-            return (j, k);
-        }
-    }
-    (n, q)
+    let inv = inverse(q, n).unwrap_or(1);
+    let p = inv.min(n - inv);
+    let k = ((f64::from(p) * f64::from(q)) / f64::from(n)).round() as u32;
+    (p, k)
 }
 
 /// Chooses the number of circuits and the pattern with the least dwell.
@@ -94,17 +103,35 @@ pub fn choose_pattern(req: &PatternRequest) -> Result<Pattern, WindingError> {
     if n0f > 1e6 {
         return Err(WindingError::field(
             "winding.band_width",
-            format!("gives {n0f:.0} circuits per layer; at most 1e6 are supported"),
+            format!(
+                "with overlap {} gives {n0f:.0} circuits per layer; at most 1e6 are supported",
+                req.overlap
+            ),
         ));
     }
     let n0 = n0f as u32;
     let natural = req.natural_turn.rem_euclid(TAU);
+    if req.pattern_number == Some(0) {
+        return Err(WindingError::field(
+            "winding.pattern_number",
+            "must be >= 1",
+        ));
+    }
     let mut best: Option<Pattern> = None;
     'layer: for n in n0..=n0.saturating_add(200) {
         // Positions in order of increasing dwell: the first acceptable one is the best.
         let first = ((natural + req.dwell_min) / TAU * f64::from(n) - 1e-9).ceil() as i64;
+        // A requested pattern number p allows only q = ±p^-1 (mod n).
+        let allowed: Option<Vec<u32>> =
+            req.pattern_number.map(|p| match inverse(p % n.max(1), n) {
+                Some(i) if n > 2 => vec![i, n - i],
+                _ => Vec::new(),
+            });
         for t in 0..i64::from(n) {
             let q = (first + t).rem_euclid(i64::from(n)) as u32;
+            if allowed.as_ref().is_some_and(|a| !a.contains(&q)) {
+                continue;
+            }
             if n > 1 && gcd(q, n) != 1 {
                 continue;
             }
@@ -197,6 +224,35 @@ mod tests {
         let p = choose_pattern(&r).unwrap();
         assert_eq!(p.pattern_number, 3);
         assert!(p.circuits >= p.circuits_min);
+    }
+
+    #[test]
+    fn pattern_number_from_the_modular_inverse_matches_a_scan() {
+        for n in 3..80u32 {
+            for q in 1..n {
+                if gcd(q, n) != 1 {
+                    continue;
+                }
+                let scan = (1..=n)
+                    .find(|j| {
+                        let rem = (j * q) % n;
+                        rem == 1 || rem == n - 1
+                    })
+                    .unwrap();
+                assert_eq!(pattern_of(q, n).0, scan, "n {n} q {q}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_requested_pattern_on_a_large_layer_is_found_directly() {
+        let mut r = req(2.0);
+        r.band_width = 0.02; // about 27 000 circuits
+        r.pattern_number = Some(7);
+        let p = choose_pattern(&r).unwrap();
+        assert_eq!(p.pattern_number, 7);
+        r.pattern_number = Some(0);
+        assert!(choose_pattern(&r).is_err());
     }
 
     #[test]

@@ -336,16 +336,31 @@ fn concave_minimax_beats_brute_force_and_respects_bridging() {
     assert!(
         (sol.c[0] - m.r(0.0)).abs() < 1e-12 && (sol.c.last().unwrap() - m.r(300.0)).abs() < 1e-12
     );
-    // The reported mu is the true worst-case slippage of the returned C(z).
+    // The reported mu is the worst-case slippage of the returned C(z): recompute it
+    // with the integral of B over each interval (Simpson), which is exact enough even
+    // where B vanishes at the touch of the bridging limit.
     let mut worst: f64 = 0.0;
     for i in 0..sol.z.len() - 1 {
-        let zm = 0.5 * (sol.z[i] + sol.z[i + 1]);
-        let b = b_factor(&m.eval(zm), 0.5 * (sol.c[i] + sol.c[i + 1]));
-        worst = worst.max(((sol.c[i + 1] - sol.c[i]) / (sol.z[i + 1] - sol.z[i]) / b).abs());
+        let (z0, z1) = (sol.z[i], sol.z[i + 1]);
+        let (c0, c1) = (sol.c[i], sol.c[i + 1]);
+        let b = (b_factor(&m.eval(z0), c0)
+            + 4.0 * b_factor(&m.eval(0.5 * (z0 + z1)), 0.5 * (c0 + c1))
+            + b_factor(&m.eval(z1), c1))
+            / 6.0;
+        worst = worst.max(((c1 - c0) / (z1 - z0) / b).abs());
     }
+    eprintln!("minimax {} recomputed {worst}", sol.mu_max);
     assert!(
-        (worst - sol.mu_max).abs() <= 1e-3 * sol.mu_max,
+        (worst - sol.mu_max).abs() <= 5e-3 * sol.mu_max,
         "{worst} vs {}",
+        sol.mu_max
+    );
+    // The optimum does not depend on the grid.
+    let fine = minimax(&m, 16000, 3.0).unwrap();
+    assert!(
+        (fine.mu_max - sol.mu_max).abs() <= 1e-3 * sol.mu_max,
+        "{} vs {}",
+        fine.mu_max,
         sol.mu_max
     );
     assert!(
@@ -354,7 +369,7 @@ fn concave_minimax_beats_brute_force_and_respects_bridging() {
     );
 
     // Brute force over piecewise-linear C on a coarse grid.
-    let nodes = 7;
+    let nodes = 25;
     let levels = 80;
     let zs: Vec<f64> = (0..nodes)
         .map(|i| 300.0 * i as f64 / (nodes - 1) as f64)
@@ -392,8 +407,15 @@ fn concave_minimax_beats_brute_force_and_respects_bridging() {
     }
     let brute = best[0];
     assert!(brute.is_finite());
+    eprintln!("brute force on a {nodes}-node grid: {brute}");
     assert!(
         sol.mu_max <= brute * 1.001,
+        "minimax {} vs brute force {brute}",
+        sol.mu_max
+    );
+    // ... and the coarse grid is not far off: the optimum is real, not an artefact.
+    assert!(
+        brute <= 1.5 * sol.mu_max,
         "minimax {} vs brute force {brute}",
         sol.mu_max
     );

@@ -115,9 +115,12 @@ fn tube_pattern_closes_with_the_dwell() {
     // Thickness: two plies of n bands over the circumference.
     let t = 2.0 * 0.5 * f64::from(pat.circuits) * 8.0 / (TAU * 50.0 * alpha.cos());
     assert!((layer.report.thickness_equator_mm - t).abs() < 1e-12);
-    // Fibre length: n circuits of two helices plus the dwell arcs.
+    // A tube has no turn-around on the mandrel: the thickness is the same all along.
+    assert!((layer.report.thickness_max_mm - t).abs() < 1e-9);
+    assert!(layer.thickness.iter().all(|x| (x - t).abs() < 1e-9));
+    // Fibre length: n circuits of two helices plus the dwell arcs round the tube's ends.
     let helix = 600.0 / alpha.cos();
-    let expect = f64::from(pat.circuits) * (2.0 * helix + pat.dwell_rad * 50.0 * alpha.sin());
+    let expect = f64::from(pat.circuits) * (2.0 * helix + pat.dwell_rad * 50.0);
     assert!((layer.report.fibre_length_mm - expect).abs() < 1e-6 * expect);
 }
 
@@ -145,7 +148,14 @@ fn tabulated_waist_agrees_with_the_analytic_one() {
         a <= 150.5 && b >= 149.5,
         "bridging binds at the waist: {a}..{b}"
     );
-    assert!(layer.pass.mu_max_abs > 0.05 && layer.pass.mu_max_abs < 1.0);
+    // The analytic waist of the same shape gives the same optimum.
+    let analytic = formcam_winding::minimax(&Waist, 4000, 3.0).unwrap();
+    assert!(
+        (layer.pass.mu_max_abs - analytic.mu_max).abs() < 1e-2 * analytic.mu_max,
+        "{} vs {}",
+        layer.pass.mu_max_abs,
+        analytic.mu_max
+    );
 }
 
 proptest! {
@@ -221,4 +231,142 @@ fn a_pass_that_cannot_leave_its_start_is_refused() {
     let e = plan_layer(&FlatStart, &spec).unwrap_err();
     assert!(e.to_string().contains("winding.mu"), "{e}");
     assert!(e.to_string().contains("start opening"), "{e}");
+}
+
+/// The waist of `analytic.rs`, in closed form.
+struct Waist;
+
+impl Meridian for Waist {
+    fn z_range(&self) -> (f64, f64) {
+        (0.0, 300.0)
+    }
+    fn eval(&self, z: f64) -> formcam_geom::Jet {
+        let k = PI / 300.0;
+        let u = (z - 150.0) / 40.0;
+        let g = (-u * u).exp();
+        formcam_geom::Jet {
+            r: 40.0 + 60.0 * (k * z).sin() - 15.0 * g,
+            dr: 60.0 * k * (k * z).cos() + 15.0 * g * 2.0 * u / 40.0,
+            d2r: -60.0 * k * k * (k * z).sin() + 15.0 * g * (2.0 - 4.0 * u * u) / 1600.0,
+        }
+    }
+}
+
+fn vessel(rp1: f64, rp2: f64) -> Vessel {
+    Vessel::new(
+        100.0,
+        300.0,
+        (DomeShape::Hemisphere, rp1),
+        (DomeShape::Hemisphere, rp2),
+    )
+    .unwrap()
+}
+
+fn poles(slippage: Slippage, start: f64, end: f64) -> LayerSpec {
+    LayerSpec {
+        slippage,
+        ends: Ends::Poles { start, end },
+        ..LayerSpec::default()
+    }
+}
+
+#[test]
+fn given_slippage_must_meet_the_far_opening() {
+    // Turns early: the band never reaches the far opening.
+    let e = plan_layer(
+        &vessel(30.0, 30.0),
+        &poles(Slippage::Constant(0.5), 30.0, 30.0),
+    )
+    .unwrap_err();
+    assert!(
+        e.to_string().contains("before the far polar opening"),
+        "{e}"
+    );
+    // Reaches the far opening below 90 degrees: it would leave the mandrel.
+    let e = plan_layer(
+        &vessel(30.0, 45.0),
+        &poles(Slippage::Constant(-0.05), 30.0, 45.0),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("winding.mu"), "{e}");
+    let segs = vec![formcam_winding::MuSegment {
+        z_from: 0.0,
+        z_to: 30.0,
+        mu: -0.02,
+    }];
+    let e = plan_layer(
+        &vessel(30.0, 30.0),
+        &poles(Slippage::Segments(segs), 30.0, 30.0),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("winding.mu_segments"), "{e}");
+    // A negative Clairaut function (the turn would reverse) is refused.
+    let e = plan_layer(
+        &vessel(5.0, 5.0),
+        &poles(Slippage::Constant(-0.05), 5.0, 5.0),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("negative"), "{e}");
+}
+
+#[test]
+fn segments_must_lie_on_the_mandrel_and_not_overlap() {
+    use formcam_winding::MuSegment;
+    let v = vessel(30.0, 30.0);
+    let outside = vec![MuSegment {
+        z_from: 1000.0,
+        z_to: 2000.0,
+        mu: 0.1,
+    }];
+    let e = plan_layer(&v, &poles(Slippage::Segments(outside), 30.0, 30.0)).unwrap_err();
+    assert!(e.to_string().contains("outside the mandrel"), "{e}");
+    let overlap = vec![
+        MuSegment {
+            z_from: 0.0,
+            z_to: 50.0,
+            mu: 0.1,
+        },
+        MuSegment {
+            z_from: 40.0,
+            z_to: 60.0,
+            mu: 0.1,
+        },
+    ];
+    let e = plan_layer(&v, &poles(Slippage::Segments(overlap), 30.0, 30.0)).unwrap_err();
+    assert!(e.to_string().contains("overlap"), "{e}");
+}
+
+#[test]
+fn minimax_refuses_flat_ends_and_honours_tiny_limits() {
+    // A cylinder given as a meridian between openings: no turn-around at its ends.
+    let flat = Cylinder::new(50.0, 300.0).unwrap();
+    let e = plan_layer(&flat, &poles(Slippage::Minimax, 50.0, 50.0)).unwrap_err();
+    assert!(e.to_string().contains("narrow"), "{e}");
+    // A limit below the first trial of the search is still a limit.
+    let mut spec = poles(Slippage::Minimax, 30.0, 30.1);
+    spec.mu_limit = 1e-5;
+    let e = plan_layer(&vessel(30.0, 30.1), &spec).unwrap_err();
+    assert!(e.to_string().contains("winding.mu_limit"), "{e}");
+    // Nearly equal openings: the optimum matches shooting (no artefact at the ends).
+    spec.mu_limit = 0.6;
+    let layer = plan_layer(&vessel(30.0, 30.1), &spec).unwrap();
+    let shot = formcam_winding::shoot(&vessel(30.0, 30.1), 0.6).unwrap();
+    assert!(
+        (layer.pass.mu_max_abs - shot.mu.abs()).abs() < 1e-2 * shot.mu.abs(),
+        "{} vs {}",
+        layer.pass.mu_max_abs,
+        shot.mu
+    );
+}
+
+#[test]
+fn the_report_does_not_depend_on_the_number_of_samples() {
+    let v = vessel(30.0, 30.0);
+    let mut spec = geodesic(30.0, 30.0);
+    let full = plan_layer(&v, &spec).unwrap();
+    spec.samples = 2;
+    let two = plan_layer(&v, &spec).unwrap();
+    assert_eq!(two.points.len(), 2);
+    assert_eq!(full.report, two.report);
+    assert_eq!(full.pattern, two.pattern);
 }

@@ -2,24 +2,18 @@
 
 #![allow(clippy::unwrap_used, clippy::needless_range_loop)]
 
+mod common;
+
+use common::{Waist, vessel};
+
 use std::f64::consts::{FRAC_PI_2, PI};
 
-use formcam_geom::{Cone, Cylinder, DomeShape, Jet, Meridian, Mirrored, Vessel};
+use formcam_geom::{Cone, Cylinder, DomeShape, Meridian, Mirrored, Vessel};
 use formcam_winding::minimax::{b_factor, bridging_limit};
 use formcam_winding::{
     Ends, LayerSpec, Method, MuLaw, PassEnd, Slippage, TraceOptions, minimax, plan_layer, shoot,
     trace,
 };
-
-fn vessel(rp1: f64, rp2: f64) -> Vessel {
-    Vessel::new(
-        100.0,
-        300.0,
-        (DomeShape::Hemisphere, rp1),
-        (DomeShape::Hemisphere, rp2),
-    )
-    .unwrap()
-}
 
 #[test]
 fn cylinder_geodesic_is_a_helix() {
@@ -261,28 +255,6 @@ fn auto_layer_reports_shooting() {
     let last = layer.points.last().unwrap();
     assert!((first.c - 30.0).abs() < 1e-9);
     assert!((last.c - 45.0).abs() < 1e-6);
-}
-
-/// A mandrel with a waist: concave in the middle.
-struct Waist {
-    len: f64,
-}
-
-impl Meridian for Waist {
-    fn z_range(&self) -> (f64, f64) {
-        (0.0, self.len)
-    }
-    fn eval(&self, z: f64) -> Jet {
-        let k = PI / self.len;
-        let w = 40.0;
-        let u = (z - 0.5 * self.len) / w;
-        let g = (-u * u).exp();
-        Jet {
-            r: 40.0 + 60.0 * (k * z).sin() - 15.0 * g,
-            dr: 60.0 * k * (k * z).cos() + 15.0 * g * 2.0 * u / w,
-            d2r: -60.0 * k * k * (k * z).sin() + 15.0 * g * (2.0 - 4.0 * u * u) / (w * w),
-        }
-    }
 }
 
 /// Worst |mu| of the straight segment (z0, c0) -> (z1, c1), or None if it leaves the feasible region.

@@ -3,6 +3,10 @@
 
 #![allow(clippy::unwrap_used)]
 
+mod common;
+
+use common::{Waist, vessel};
+
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use formcam_geom::{Cylinder, DomeShape, Meridian, Tabulated, Vessel};
@@ -149,7 +153,7 @@ fn tabulated_waist_agrees_with_the_analytic_one() {
         "bridging binds at the waist: {a}..{b}"
     );
     // The analytic waist of the same shape gives the same optimum.
-    let analytic = formcam_winding::minimax(&Waist, 4000, 3.0).unwrap();
+    let analytic = formcam_winding::minimax(&Waist { len: 300.0 }, 4000, 3.0).unwrap();
     assert!(
         (layer.pass.mu_max_abs - analytic.mu_max).abs() < 1e-2 * analytic.mu_max,
         "{} vs {}",
@@ -231,35 +235,6 @@ fn a_pass_that_cannot_leave_its_start_is_refused() {
     let e = plan_layer(&FlatStart, &spec).unwrap_err();
     assert!(e.to_string().contains("winding.mu"), "{e}");
     assert!(e.to_string().contains("start opening"), "{e}");
-}
-
-/// The waist of `analytic.rs`, in closed form.
-struct Waist;
-
-impl Meridian for Waist {
-    fn z_range(&self) -> (f64, f64) {
-        (0.0, 300.0)
-    }
-    fn eval(&self, z: f64) -> formcam_geom::Jet {
-        let k = PI / 300.0;
-        let u = (z - 150.0) / 40.0;
-        let g = (-u * u).exp();
-        formcam_geom::Jet {
-            r: 40.0 + 60.0 * (k * z).sin() - 15.0 * g,
-            dr: 60.0 * k * (k * z).cos() + 15.0 * g * 2.0 * u / 40.0,
-            d2r: -60.0 * k * k * (k * z).sin() + 15.0 * g * (2.0 - 4.0 * u * u) / 1600.0,
-        }
-    }
-}
-
-fn vessel(rp1: f64, rp2: f64) -> Vessel {
-    Vessel::new(
-        100.0,
-        300.0,
-        (DomeShape::Hemisphere, rp1),
-        (DomeShape::Hemisphere, rp2),
-    )
-    .unwrap()
 }
 
 fn poles(slippage: Slippage, start: f64, end: f64) -> LayerSpec {

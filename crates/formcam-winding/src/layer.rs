@@ -5,6 +5,7 @@ use std::f64::consts::{FRAC_PI_2, TAU};
 use formcam_geom::Meridian;
 use serde::Serialize;
 
+use crate::circuit::{PassPath, Turnaround};
 use crate::minimax::{bridging_limit, minimax};
 use crate::path::{PassEnd, TANGENT_ALPHA_TOL, TraceOptions, trace};
 use crate::pattern::{Pattern, PatternRequest, choose_pattern};
@@ -184,6 +185,12 @@ pub struct Layer {
     pub report: LayerReport,
     /// Things the user should know.
     pub warnings: Vec<String>,
+    /// The pass, for evaluation anywhere (the circuit and the eye use it).
+    #[serde(skip)]
+    pub pass_path: PassPath,
+    /// Whether the mandrel is a tube (turn-arounds off the winding zone).
+    #[serde(skip)]
+    pub tube: bool,
 }
 
 fn check_spec(spec: &LayerSpec, (za, zb): (f64, f64)) -> Result<(), WindingError> {
@@ -371,6 +378,7 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
     // `dense` drives every figure of the report; `points` are what the user asked for.
     let mut dense = Vec::new();
     let mut points = Vec::new();
+    let mut pass_path = PassPath::Points(Vec::new());
     let mut start = PassEnd::TurnAround { z: za };
     let mut end = PassEnd::TurnAround { z: zb };
     if method != Method::Minimax {
@@ -391,6 +399,7 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
             };
         }
         end = tr.end;
+        pass_path = PassPath::Traced(tr.clone());
         let (_, bad) = bridging_margin(m, &dense);
         if let Some(zbad) = bad {
             if spec.slippage == Slippage::Auto {
@@ -423,6 +432,7 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         })?;
         dense = mm.points(m);
         points = resample(&dense, samples);
+        pass_path = PassPath::Points(dense.clone());
         start = PassEnd::TurnAround { z: za };
         end = PassEnd::TurnAround { z: zb };
         minimax_info = Some((mm.mu_max, mm.bridging_active));
@@ -503,11 +513,12 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         skip_index: spec.skip_index,
     })?;
     let n = f64::from(pattern.circuits);
-    // Dwell arcs: while the mandrel dwells the band wraps the turn-around parallel
-    // (radius C at a polar turn or boss) or the tube's end (radius r).
-    let wrap = |p: &PathPoint| if tube { p.r } else { p.c.abs() };
-    let dwell_arc = 0.5 * pattern.dwell_rad * (wrap(&last) + wrap(&dense[0]));
-    let circuit_len = 2.0 * pass_len + dwell_arc;
+    // The turn-arounds of the circuit (see `circuit`): the band laid while the
+    // mandrel dwells, and at a boss the rest of the turn.
+    let dwell_end = 0.5 * pattern.dwell_rad;
+    let far = Turnaround::new(m, &end, dwell_end, tube, true);
+    let near = Turnaround::new(m, &start, dwell_end, tube, false);
+    let circuit_len = 2.0 * last.s + far.length() + near.length();
 
     // Thickness along the meridian: two plies, n bands of width b across a parallel
     // of circumference 2 pi r at angle alpha. Near a turn-around cos(alpha) -> 0 and the
@@ -574,6 +585,8 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         pattern,
         report,
         warnings,
+        pass_path,
+        tube,
     })
 }
 

@@ -7,6 +7,7 @@
 //! * [`minimax`] solves the concave-meridian problem (eq. 5–6);
 //! * [`plan_layer`] turns a [`LayerSpec`] into a [`Layer`]: pass, pattern, report.
 
+pub mod circuit;
 mod error;
 pub mod job;
 mod layer;
@@ -17,6 +18,7 @@ mod pattern;
 mod shooting;
 mod slippage;
 
+pub use circuit::{Circuit, CircuitPoint, PassPath, Turnaround};
 pub use error::WindingError;
 pub use layer::{Ends, Layer, LayerReport, LayerSpec, Method, PassSummary, Slippage, plan_layer};
 pub use minimax::{MinimaxPath, minimax};

@@ -65,7 +65,7 @@ const D6: f64 = -1453857185.0 / 822651844.0;
 const D7: f64 = 69997945.0 / 29380423.0;
 
 /// One accepted step with its continuous extension (4th order).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Step<const N: usize> {
     /// Start of the step.
     pub t0: f64,

@@ -67,7 +67,7 @@ impl PassEnd {
 }
 
 /// A pass integrated with its accepted steps (dense output available everywhere).
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Trace {
     steps: Vec<Step<3>>,
     /// How the pass ends.

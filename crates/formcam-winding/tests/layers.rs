@@ -122,9 +122,11 @@ fn tube_pattern_closes_with_the_dwell() {
     // A tube has no turn-around on the mandrel: the thickness is the same all along.
     assert!((layer.report.thickness_max_mm - t).abs() < 1e-9);
     assert!(layer.thickness.iter().all(|x| (x - t).abs() < 1e-9));
-    // Fibre length: n circuits of two helices plus the dwell arcs round the tube's ends.
+    // Fibre length: n circuits of two helices plus the two turn-arounds on the tube's
+    // extension, where alpha sweeps through 90 deg while the mandrel turns the dwell.
     let helix = 600.0 / alpha.cos();
-    let expect = f64::from(pat.circuits) * (2.0 * helix + pat.dwell_rad * 50.0);
+    let sweep = 0.5 * pat.dwell_rad * 50.0 * (PI - 2.0 * alpha) / (2.0 * alpha.cos());
+    let expect = f64::from(pat.circuits) * (2.0 * helix + 2.0 * sweep);
     assert!((layer.report.fibre_length_mm - expect).abs() < 1e-6 * expect);
 }
 

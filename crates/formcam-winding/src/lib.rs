@@ -9,6 +9,7 @@
 
 pub mod circuit;
 mod error;
+pub mod eye;
 pub mod job;
 mod layer;
 pub mod minimax;

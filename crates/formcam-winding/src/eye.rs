@@ -1,0 +1,989 @@
+//! The payout-eye trajectory (eqs. 7–11 of the spec) and the pull-speed
+//! optimisation (eqs. 12–15).
+//!
+//! For a path point with tangent `tau` (eq. 8–9) the eye lies at `P + l tau`;
+//! its cylindrical coordinates are eq. 10. A trajectory is a free length `l(x)`
+//! over the circuit's parameter `x` (the laid band length, see [`Circuit`]).
+//!
+//! * `axis-parallel`: `R(l) = R_eye`, solved in closed form;
+//! * `equidistant`: the eye keeps `clearance` from the mandrel — on the upper
+//!   envelope of the discs of that radius centred on the meridian (and on the
+//!   shaft through the polar openings), which near a small opening is a circle
+//!   round the opening's edge, not an offset dome;
+//! * `curve`: a user polyline `R = f(Z)`;
+//! * `pull-speed`: `l(x)` discretised and chosen lexicographically: max min `u`,
+//!   then min max `u`, then min `∫ (u - U)^2 dx` (LP, LP, QP by Clarabel), with
+//!   `lambda = l + s - k R`, `u = d lambda / dx`.
+//!
+//! The constraints of the spec are checked for every mode: cyclicity, the
+//! clearance (`l >= l_min(x)`, the equidistant length) and `l <= l_max`, no slack
+//! (`d(l + s)/dx >= 0`) and no reverse rotation of the mandrel (`dV/dx >= 0`).
+
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{
+    DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus,
+    SupportedConeT, ZeroConeT,
+};
+use formcam_geom::Meridian;
+use serde::Serialize;
+
+use crate::{Circuit, CircuitPoint, WindingError};
+
+/// How the eye trajectory is chosen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum EyeMode {
+    /// On a line parallel to the axis at `radius`.
+    AxisParallel,
+    /// At `clearance` from the mandrel.
+    Equidistant,
+    /// On a user curve `R = f(Z)`.
+    Curve,
+    /// The pull-speed optimum.
+    PullSpeed,
+}
+
+/// What the user asks of the eye.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EyeSpec {
+    /// The mode.
+    pub mode: EyeMode,
+    /// Axis-parallel: radius of the eye's line, mm.
+    pub radius: Option<f64>,
+    /// Least clearance between the eye and the mandrel in every mode, mm
+    /// (and the clearance of `equidistant`).
+    pub clearance: f64,
+    /// Largest free length, mm.
+    pub l_max: f64,
+    /// `k = 0` (the bath moves with the eye) or `k = 1` (fixed bath).
+    pub bath_moves_with_eye: bool,
+    /// Curve mode: `(Z, R)` points with `Z` increasing.
+    pub curve: Vec<(f64, f64)>,
+    /// Points of the trajectory for the geometric modes.
+    pub samples: usize,
+    /// Intervals of the discretised `l(x)` of the optimisation.
+    pub nodes: usize,
+}
+
+impl Default for EyeSpec {
+    fn default() -> Self {
+        Self {
+            mode: EyeMode::PullSpeed,
+            radius: None,
+            clearance: 20.0,
+            l_max: 400.0,
+            bath_moves_with_eye: true,
+            curve: Vec::new(),
+            samples: 2001,
+            nodes: 2000,
+        }
+    }
+}
+
+/// One point of the eye trajectory.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct EyePoint {
+    /// Circuit parameter (laid band length), mm.
+    pub x: f64,
+    /// Path point `z`, mm.
+    pub z: f64,
+    /// Path point radius, mm.
+    pub r: f64,
+    /// Path point turn angle, rad.
+    pub v: f64,
+    /// Angle of the path to the `+z` meridian, rad (`pi - alpha` on the return pass).
+    pub alpha: f64,
+    /// Free length, mm.
+    pub l: f64,
+    /// Least free length that keeps the clearance, mm.
+    pub l_min: f64,
+    /// Eye `Z`, mm.
+    pub eye_z: f64,
+    /// Eye `R`, mm.
+    pub eye_r: f64,
+    /// Eye `V`, rad.
+    pub eye_v: f64,
+    /// Band length pulled through the bath, `l + s - k R`, mm.
+    pub lambda: f64,
+    /// Relative pull speed `d lambda / dx` on the interval that starts here.
+    pub u: f64,
+}
+
+/// A broken constraint, summarised.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Violation {
+    /// Which: `cyclicity`, `clearance`, `l_max`, `slack`, `reverse-rotation`.
+    pub constraint: &'static str,
+    /// The first `x` where it fails, mm.
+    pub x: f64,
+    /// How many points or intervals fail.
+    pub count: usize,
+    /// The worst excess (mm, or rad for the rotation), positive.
+    pub worst: f64,
+}
+
+/// Statistics of the pull speed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PullStats {
+    /// Least `u`.
+    pub u_min: f64,
+    /// Largest `u`.
+    pub u_max: f64,
+    /// Mean `U` (weighted by `dx`).
+    pub u_mean: f64,
+    /// RMS of `u - U`.
+    pub u_rms_dev: f64,
+}
+
+/// The pull speed of a geometric trajectory on the same nodes, for comparison.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Comparison {
+    /// The mode compared with.
+    pub mode: EyeMode,
+    /// Its statistics.
+    pub stats: PullStats,
+    /// Whether it keeps every constraint.
+    pub constraints_ok: bool,
+}
+
+/// An eye trajectory over one circuit.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EyeTrajectory {
+    /// The mode.
+    pub mode: EyeMode,
+    /// The points, first and last at the circuit's start and end.
+    #[serde(skip)]
+    pub points: Vec<EyePoint>,
+    /// Pull-speed statistics.
+    pub stats: PullStats,
+    /// Broken constraints.
+    pub violations: Vec<Violation>,
+    /// Whether every constraint holds.
+    pub constraints_ok: bool,
+    /// Mandrel turn over the circuit, rad.
+    pub circuit_turn_rad: f64,
+    /// Distance between the first eye point turned by the circuit's turn and the last, mm.
+    pub closure_mm: f64,
+    /// The geometric trajectories on the same nodes (pull-speed mode only).
+    pub comparison: Vec<Comparison>,
+}
+
+/// Eye position for free length `l`: `(Z, R, V, dZ/dl, dR/dl)` (eq. 10).
+pub fn eye_at(p: &CircuitPoint, l: f64) -> (f64, f64, f64, f64, f64) {
+    let q = (1.0 + p.dr * p.dr).sqrt();
+    let ca = p.alpha.cos() / q;
+    let a = p.dr * ca;
+    let sa = p.alpha.sin();
+    let d = p.r + l * a;
+    let w = l * sa;
+    let rr = d.hypot(w);
+    let dr_dl = if rr > 0.0 { (d * a + w * sa) / rr } else { 0.0 };
+    (p.z + l * ca, rr, p.v + w.atan2(d), ca, dr_dl)
+}
+
+/// Free length that puts the eye at radius `radius` (axis-parallel), if any.
+pub fn axis_parallel_length(p: &CircuitPoint, radius: f64) -> Option<f64> {
+    let q = (1.0 + p.dr * p.dr).sqrt();
+    let a = p.dr * p.alpha.cos() / q;
+    let sa = p.alpha.sin();
+    let aa = a * a + sa * sa;
+    let b = p.r * a;
+    let c = p.r * p.r - radius * radius;
+    let disc = b * b - aa * c;
+    if aa <= 1e-300 || disc < 0.0 {
+        return None;
+    }
+    let l = (-b + disc.sqrt()) / aa;
+    (l >= 0.0).then_some(l)
+}
+
+/// A curve `R = f(Z)` sampled on a uniform grid, linear between nodes, constant beyond.
+#[derive(Debug, Clone)]
+struct Profile {
+    z0: f64,
+    dz: f64,
+    vals: Vec<f64>,
+}
+
+impl Profile {
+    fn at(&self, z: f64) -> (f64, f64) {
+        let n = self.vals.len();
+        let t = (z - self.z0) / self.dz;
+        if t.is_nan() || t <= 0.0 {
+            return (self.vals[0], 0.0);
+        }
+        let i = t.floor() as usize;
+        if i + 1 >= n {
+            return (self.vals[n - 1], 0.0);
+        }
+        let f = t - i as f64;
+        let slope = (self.vals[i + 1] - self.vals[i]) / self.dz;
+        (self.vals[i] + f * (self.vals[i + 1] - self.vals[i]), slope)
+    }
+}
+
+/// The clearance zone's outer boundary: the upper envelope of discs of radius
+/// `c` centred on the meridian and on the shaft beyond its ends (radius of the end).
+fn clearance_envelope<M: Meridian>(m: &M, c: f64, reach: f64) -> Profile {
+    let (za, zb) = m.z_range();
+    let (ra, rb) = (m.r(za), m.r(zb));
+    let lo = za - reach - c;
+    let hi = zb + reach + c;
+    // Cells of c/400: where a disc meets the shaft's plateau the envelope has a
+    // corner, and linear interpolation across it errs by about slope * cell / 2.
+    let cells = (((hi - lo) / (c / 400.0)).ceil() as usize).clamp(2048, 1 << 18);
+    let dz = (hi - lo) / cells as f64;
+    let mut vals: Vec<f64> = (0..=cells)
+        .map(|i| {
+            let z = lo + dz * i as f64;
+            if z <= za {
+                ra + c
+            } else if z >= zb {
+                rb + c
+            } else {
+                f64::NEG_INFINITY
+            }
+        })
+        .collect();
+    let samples = 4096usize
+        .max(((zb - za) / (c / 20.0)).ceil() as usize)
+        .min(1 << 16);
+    for k in 0..=samples {
+        let zk = za + (zb - za) * k as f64 / samples as f64;
+        let rk = m.r(zk);
+        let i0 = (((zk - c) - lo) / dz).floor().max(0.0) as usize;
+        let i1 = ((((zk + c) - lo) / dz).ceil() as usize).min(cells);
+        for (i, val) in vals.iter_mut().enumerate().take(i1 + 1).skip(i0) {
+            let d = lo + dz * i as f64 - zk;
+            let h = c * c - d * d;
+            if h >= 0.0 {
+                *val = val.max(rk + h.sqrt());
+            }
+        }
+    }
+    Profile { z0: lo, dz, vals }
+}
+
+/// The user curve as a profile (fine resampling of the polyline).
+fn curve_profile(curve: &[(f64, f64)]) -> Result<Profile, WindingError> {
+    if curve.len() < 2 {
+        return Err(WindingError::field(
+            "eye.curve",
+            "needs at least 2 points (columns Z,R)",
+        ));
+    }
+    for (i, w) in curve.windows(2).enumerate() {
+        if w[1].0.is_nan() || w[1].0 <= w[0].0 {
+            return Err(WindingError::field(
+                "eye.curve",
+                format!(
+                    "row {}: Z must increase (got {} after {})",
+                    i + 2,
+                    w[1].0,
+                    w[0].0
+                ),
+            ));
+        }
+    }
+    if curve
+        .iter()
+        .any(|p| !p.0.is_finite() || !p.1.is_finite() || p.1 <= 0.0)
+    {
+        return Err(WindingError::field(
+            "eye.curve",
+            "every point needs finite Z and R > 0",
+        ));
+    }
+    let (z0, z1) = (curve[0].0, curve[curve.len() - 1].0);
+    let cells = 8192usize;
+    let dz = (z1 - z0) / cells as f64;
+    let mut j = 0;
+    let vals = (0..=cells)
+        .map(|i| {
+            let z = z0 + dz * i as f64;
+            while j + 2 < curve.len() && curve[j + 1].0 < z {
+                j += 1;
+            }
+            let (a, b) = (curve[j], curve[j + 1]);
+            let t = ((z - a.0) / (b.0 - a.0)).clamp(0.0, 1.0);
+            a.1 + t * (b.1 - a.1)
+        })
+        .collect();
+    Ok(Profile { z0, dz, vals })
+}
+
+/// The first free length at which the eye reaches the curve `R = f(Z)` (from inside),
+/// starting the search near `guess`. `None` when it is not reached before `l_hi`.
+fn length_to_profile(p: &CircuitPoint, f: &Profile, guess: f64, l_hi: f64) -> Option<f64> {
+    let g = |l: f64| {
+        let (z, r, _, _, _) = eye_at(p, l);
+        r - f.at(z).0
+    };
+    if g(0.0) >= 0.0 {
+        return Some(0.0);
+    }
+    // Bracket the first sign change: march from 0 with a step tied to the guess,
+    // so that a smaller root is not skipped.
+    let step = (0.25 * guess).max(1.0);
+    let (mut a, mut fa) = (0.0, g(0.0));
+    let mut b = a;
+    let mut fb = fa;
+    // Jump close to the guess when the curve is still ahead there.
+    if guess > step {
+        let gl = guess - step;
+        let fg = g(gl);
+        if fg < 0.0 {
+            a = gl;
+            fa = fg;
+        }
+    }
+    while b < l_hi {
+        b = (a + step).min(l_hi);
+        fb = g(b);
+        if fb >= 0.0 {
+            break;
+        }
+        a = b;
+        fa = fb;
+    }
+    if fb < 0.0 {
+        return None;
+    }
+    // Illinois on [a, b].
+    let mut side = 0;
+    for _ in 0..100 {
+        let c = (a * fb - b * fa) / (fb - fa);
+        let c = if c.is_finite() && c > a && c < b {
+            c
+        } else {
+            0.5 * (a + b)
+        };
+        let fc = g(c);
+        if fc.abs() < 1e-11 || b - a < 1e-12 {
+            return Some(c);
+        }
+        if fc > 0.0 {
+            b = c;
+            fb = fc;
+            if side == -1 {
+                fa *= 0.5;
+            }
+            side = -1;
+        } else {
+            a = c;
+            fa = fc;
+            if side == 1 {
+                fb *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    Some(0.5 * (a + b))
+}
+
+/// Least free lengths (the clearance) at the given circuit points.
+fn least_lengths<M: Meridian>(
+    m: &M,
+    pts: &[CircuitPoint],
+    spec: &EyeSpec,
+) -> Result<Vec<f64>, WindingError> {
+    let env = clearance_envelope(m, spec.clearance, spec.l_max);
+    let l_hi = 4.0 * spec.l_max + 10.0 * spec.clearance;
+    let mut out = Vec::with_capacity(pts.len());
+    let mut guess = 0.0;
+    for p in pts {
+        let l = length_to_profile(p, &env, guess, l_hi).ok_or_else(|| {
+            WindingError::infeasible(
+                "eye.clearance",
+                format!(
+                    "no eye position on the free band keeps {} mm from the mandrel at x = {:.3} mm \
+                     (z = {:.3} mm)",
+                    spec.clearance, p.x, p.z
+                ),
+            )
+        })?;
+        guess = l;
+        out.push(l);
+    }
+    Ok(out)
+}
+
+fn check_spec<M: Meridian>(m: &M, spec: &EyeSpec) -> Result<(), WindingError> {
+    let pos = |field: &str, v: f64| {
+        if v.is_finite() && v > 0.0 {
+            Ok(())
+        } else {
+            Err(WindingError::field(
+                field,
+                format!("must be a finite number > 0, got {v}"),
+            ))
+        }
+    };
+    pos("eye.clearance", spec.clearance)?;
+    pos("eye.l_max", spec.l_max)?;
+    if spec.samples < 3 {
+        return Err(WindingError::field("eye.samples", "must be >= 3"));
+    }
+    if !(16..=200_000).contains(&spec.nodes) {
+        return Err(WindingError::field("eye.nodes", "must be in [16, 200000]"));
+    }
+    if spec.mode == EyeMode::AxisParallel {
+        let radius = spec.radius.ok_or_else(|| {
+            WindingError::field("eye.radius", "missing: the radius of the eye's line, mm")
+        })?;
+        pos("eye.radius", radius)?;
+        let (za, zb) = m.z_range();
+        let r_max = (0..=2000)
+            .map(|i| m.r(za + (zb - za) * f64::from(i) / 2000.0))
+            .fold(0.0, f64::max);
+        if radius <= r_max {
+            return Err(WindingError::field(
+                "eye.radius",
+                format!("{radius} mm is inside the mandrel (its largest radius is {r_max:.3} mm)"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Builds the eye trajectory of `layer` (planned on `m`) as `spec` asks.
+pub fn eye_trajectory<M: Meridian>(
+    m: &M,
+    layer: &crate::Layer,
+    spec: &EyeSpec,
+) -> Result<EyeTrajectory, WindingError> {
+    check_spec(m, spec)?;
+    let circuit = Circuit::new(m, layer);
+    let k = if spec.bath_moves_with_eye { 0.0 } else { 1.0 };
+    let n = match spec.mode {
+        EyeMode::PullSpeed => spec.nodes,
+        _ => spec.samples - 1,
+    };
+    let total = circuit.length();
+    let pts: Vec<CircuitPoint> = (0..=n)
+        .map(|i| circuit.at(total * i as f64 / n as f64))
+        .collect();
+    let l_min = least_lengths(m, &pts, spec)?;
+    let geometric = |mode: EyeMode| -> Result<Vec<f64>, WindingError> {
+        match mode {
+            EyeMode::AxisParallel => {
+                let radius = spec.radius.unwrap_or(0.0);
+                pts.iter()
+                    .map(|p| {
+                        axis_parallel_length(p, radius).ok_or_else(|| {
+                            WindingError::infeasible(
+                                "eye.radius",
+                                format!(
+                                    "the free band at x = {:.3} mm never reaches R = {radius} mm",
+                                    p.x
+                                ),
+                            )
+                        })
+                    })
+                    .collect()
+            }
+            EyeMode::Equidistant => Ok(l_min.clone()),
+            EyeMode::Curve => {
+                let prof = curve_profile(&spec.curve)?;
+                let (c0, c1) = (spec.curve[0].0, spec.curve[spec.curve.len() - 1].0);
+                let mut guess = 0.0;
+                let l_hi = 4.0 * spec.l_max + 10.0 * spec.clearance;
+                pts.iter()
+                    .map(|p| {
+                        if prof.at(p.z).0 <= p.r && p.z >= c0 && p.z <= c1 {
+                            return Err(WindingError::field(
+                                "eye.curve",
+                                format!("lies inside the mandrel at Z = {:.3} mm", p.z),
+                            ));
+                        }
+                        let l = length_to_profile(p, &prof, guess, l_hi).ok_or_else(|| {
+                            WindingError::field(
+                                "eye.curve",
+                                format!("the free band at x = {:.3} mm never meets the curve", p.x),
+                            )
+                        })?;
+                        let (ez, _, _, _, _) = eye_at(p, l);
+                        if ez < c0 - 1e-9 || ez > c1 + 1e-9 {
+                            return Err(WindingError::field(
+                                "eye.curve",
+                                format!(
+                                    "does not cover the winding zone: the eye needs Z = {ez:.3} mm, the \
+                                     curve spans [{c0:.3}, {c1:.3}] mm"
+                                ),
+                            ));
+                        }
+                        guess = l;
+                        Ok(l)
+                    })
+                    .collect()
+            }
+            EyeMode::PullSpeed => unreachable_mode(),
+        }
+    };
+    let (l, comparison) = match spec.mode {
+        EyeMode::PullSpeed => {
+            let l = optimise(&pts, &l_min, spec, k)?;
+            let mut comparison = Vec::new();
+            if spec.radius.is_some()
+                && let Ok(lap) = geometric(EyeMode::AxisParallel)
+            {
+                {
+                    let (st, ok) = evaluate(&pts, &lap, &l_min, spec, k);
+                    comparison.push(Comparison {
+                        mode: EyeMode::AxisParallel,
+                        stats: st,
+                        constraints_ok: ok,
+                    });
+                }
+            }
+            let (st, ok) = evaluate(&pts, &l_min, &l_min, spec, k);
+            comparison.push(Comparison {
+                mode: EyeMode::Equidistant,
+                stats: st,
+                constraints_ok: ok,
+            });
+            (l, comparison)
+        }
+        mode => (geometric(mode)?, Vec::new()),
+    };
+    let points = eye_points(&pts, &l, &l_min, k);
+    let (stats, _) = evaluate(&pts, &l, &l_min, spec, k);
+    let violations = violations(&points, spec);
+    let turn = circuit.turn_angle();
+    let closure_mm = closure(&points, turn);
+    Ok(EyeTrajectory {
+        mode: spec.mode,
+        constraints_ok: violations.is_empty(),
+        points,
+        stats,
+        violations,
+        circuit_turn_rad: turn,
+        closure_mm,
+        comparison,
+    })
+}
+
+fn unreachable_mode() -> Result<Vec<f64>, WindingError> {
+    Err(WindingError::field(
+        "eye.mode",
+        "pull-speed is not a geometric mode",
+    ))
+}
+
+/// Eye points from free lengths (cyclic: the last interval's `u` repeats the first).
+fn eye_points(pts: &[CircuitPoint], l: &[f64], l_min: &[f64], k: f64) -> Vec<EyePoint> {
+    let mut out: Vec<EyePoint> = pts
+        .iter()
+        .zip(l.iter().zip(l_min))
+        .map(|(p, (&l, &lm))| {
+            let (ez, er, ev, _, _) = eye_at(p, l);
+            EyePoint {
+                x: p.x,
+                z: p.z,
+                r: p.r,
+                v: p.v,
+                alpha: p.alpha,
+                l,
+                l_min: lm,
+                eye_z: ez,
+                eye_r: er,
+                eye_v: ev,
+                lambda: l + p.x - k * er,
+                u: 0.0,
+            }
+        })
+        .collect();
+    let n = out.len();
+    for i in 0..n.saturating_sub(1) {
+        let dx = out[i + 1].x - out[i].x;
+        out[i].u = if dx > 0.0 {
+            (out[i + 1].lambda - out[i].lambda) / dx
+        } else {
+            1.0
+        };
+    }
+    if n >= 2 {
+        out[n - 1].u = out[0].u;
+    }
+    out
+}
+
+/// Pull-speed statistics and whether all constraints hold, for free lengths `l`.
+fn evaluate(
+    pts: &[CircuitPoint],
+    l: &[f64],
+    l_min: &[f64],
+    spec: &EyeSpec,
+    k: f64,
+) -> (PullStats, bool) {
+    let e = eye_points(pts, l, l_min, k);
+    (stats(&e), violations(&e, spec).is_empty())
+}
+
+fn stats(e: &[EyePoint]) -> PullStats {
+    let n = e.len().saturating_sub(1);
+    let total = e.last().map_or(0.0, |p| p.x) - e.first().map_or(0.0, |p| p.x);
+    let (mut lo, mut hi, mut sum) = (f64::INFINITY, f64::NEG_INFINITY, 0.0);
+    for i in 0..n {
+        let dx = e[i + 1].x - e[i].x;
+        lo = lo.min(e[i].u);
+        hi = hi.max(e[i].u);
+        sum += e[i].u * dx;
+    }
+    let mean = if total > 0.0 { sum / total } else { 0.0 };
+    let var: f64 = (0..n)
+        .map(|i| (e[i].u - mean).powi(2) * (e[i + 1].x - e[i].x))
+        .sum();
+    PullStats {
+        u_min: lo,
+        u_max: hi,
+        u_mean: mean,
+        u_rms_dev: if total > 0.0 {
+            (var / total).sqrt()
+        } else {
+            0.0
+        },
+    }
+}
+
+/// The constraints of the spec, summarised per kind.
+fn violations(e: &[EyePoint], spec: &EyeSpec) -> Vec<Violation> {
+    let tol = 1e-6;
+    let mut out: Vec<Violation> = Vec::new();
+    let mut note = |name: &'static str, x: f64, excess: f64| {
+        if let Some(v) = out.iter_mut().find(|v| v.constraint == name) {
+            v.count += 1;
+            v.worst = v.worst.max(excess);
+        } else {
+            out.push(Violation {
+                constraint: name,
+                x,
+                count: 1,
+                worst: excess,
+            });
+        }
+    };
+    if let (Some(a), Some(b)) = (e.first(), e.last())
+        && (a.l - b.l).abs() > tol
+    {
+        note("cyclicity", b.x, (a.l - b.l).abs());
+    }
+    for p in e {
+        if p.l < p.l_min - 1e-6 * (1.0 + p.l_min) {
+            note("clearance", p.x, p.l_min - p.l);
+        }
+        if p.l > spec.l_max + tol {
+            note("l_max", p.x, p.l - spec.l_max);
+        }
+    }
+    for w in e.windows(2) {
+        let slack = (w[1].l - w[0].l) + (w[1].x - w[0].x);
+        if slack < -tol {
+            note("slack", w[0].x, -slack);
+        }
+        let dv = w[1].eye_v - w[0].eye_v;
+        if dv < -1e-9 {
+            note("reverse-rotation", w[0].x, -dv);
+        }
+    }
+    out
+}
+
+/// Distance between the first eye point turned by the circuit's turn and the last.
+fn closure(e: &[EyePoint], turn: f64) -> f64 {
+    let (Some(a), Some(b)) = (e.first(), e.last()) else {
+        return 0.0;
+    };
+    let pa = (
+        a.eye_r * (a.eye_v + turn).cos(),
+        a.eye_r * (a.eye_v + turn).sin(),
+        a.eye_z,
+    );
+    let pb = (b.eye_r * b.eye_v.cos(), b.eye_r * b.eye_v.sin(), b.eye_z);
+    ((pa.0 - pb.0).powi(2) + (pa.1 - pb.1).powi(2) + (pa.2 - pb.2).powi(2)).sqrt()
+}
+
+/// A sparse problem for Clarabel: `min 1/2 x'Px + q'x`, equality rows then `<=` rows.
+struct Problem {
+    n: usize,
+    p_diag: Vec<(usize, f64)>,
+    q: Vec<f64>,
+    eq: Vec<(Vec<(usize, f64)>, f64)>,
+    le: Vec<(Vec<(usize, f64)>, f64)>,
+}
+
+impl Problem {
+    fn new(n: usize) -> Self {
+        Self {
+            n,
+            p_diag: Vec::new(),
+            q: vec![0.0; n],
+            eq: Vec::new(),
+            le: Vec::new(),
+        }
+    }
+
+    fn solve(&self, stage: &str) -> Result<Vec<f64>, WindingError> {
+        let m = self.eq.len() + self.le.len();
+        let (mut ii, mut jj, mut vv) = (Vec::new(), Vec::new(), Vec::new());
+        for (row, (coef, _)) in self.eq.iter().chain(&self.le).enumerate() {
+            for &(j, v) in coef {
+                ii.push(row);
+                jj.push(j);
+                vv.push(v);
+            }
+        }
+        let a = CscMatrix::new_from_triplets(m, self.n, ii, jj, vv);
+        let (pi, pv): (Vec<usize>, Vec<f64>) = self.p_diag.iter().copied().unzip();
+        let p = CscMatrix::new_from_triplets(self.n, self.n, pi.clone(), pi, pv);
+        let b: Vec<f64> = self.eq.iter().chain(&self.le).map(|r| r.1).collect();
+        let mut cones: Vec<SupportedConeT<f64>> = Vec::new();
+        if !self.eq.is_empty() {
+            cones.push(ZeroConeT(self.eq.len()));
+        }
+        cones.push(NonnegativeConeT(self.le.len()));
+        let settings = DefaultSettingsBuilder::default()
+            .verbose(false)
+            .max_iter(400)
+            .build()
+            .map_err(|e| WindingError::field("eye", format!("solver settings: {e:?}")))?;
+        let mut solver = DefaultSolver::new(&p, &self.q, &a, &b, &cones, settings)
+            .map_err(|e| WindingError::field("eye", format!("{stage}: solver setup: {e:?}")))?;
+        solver.solve();
+        match solver.solution.status {
+            SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(solver.solution.x.clone()),
+            SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
+                Err(WindingError::infeasible(
+                    "eye.l_max",
+                    format!(
+                        "{stage}: no free length l(x) keeps the clearance, stays under l_max and \
+                         never slackens the band (the LP is infeasible)"
+                    ),
+                ))
+            }
+            other => Err(WindingError::infeasible(
+                "eye",
+                format!("{stage}: the solver stopped with {other:?}"),
+            )),
+        }
+    }
+}
+
+/// Lexicographic pull-speed optimum on the nodes `pts` (`pts[n]` closes the cycle).
+fn optimise(
+    pts: &[CircuitPoint],
+    l_min: &[f64],
+    spec: &EyeSpec,
+    k: f64,
+) -> Result<Vec<f64>, WindingError> {
+    let n = pts.len() - 1;
+    if let Some(i) = (0..=n).find(|&i| l_min[i] > spec.l_max) {
+        return Err(WindingError::infeasible(
+            "eye.l_max",
+            format!(
+                "keeping the clearance of {} mm needs a free length of {:.3} mm at x = {:.3} mm \
+                 (z = {:.3} mm), more than l_max = {} mm",
+                spec.clearance, l_min[i], pts[i].x, pts[i].z, spec.l_max
+            ),
+        ));
+    }
+    let lo: Vec<f64> = (0..n)
+        .map(|i| l_min[i].max(l_min[if i == 0 { n } else { i }]))
+        .collect();
+    // Start: a constant length when one fits, else the least lengths.
+    let top = lo.iter().copied().fold(0.0, f64::max);
+    let mut l0: Vec<f64> = if top <= spec.l_max {
+        vec![top; n]
+    } else {
+        lo.clone()
+    };
+    let iterations = if k == 0.0 { 1 } else { 8 };
+    let mut trust = 0.25 * spec.l_max;
+    let mut best = l0.clone();
+    let mut best_min = f64::NEG_INFINITY;
+    for _ in 0..iterations {
+        let lin = Linear::new(pts, &l0, k);
+        let (t, l) = stage_min(pts, &lo, spec, &lin, &l0, trust, k)?;
+        let _ = t;
+        let exact = exact_u_min(pts, &l, k);
+        if exact > best_min + 1e-12 {
+            best_min = exact;
+            best = l.clone();
+            l0 = l;
+        } else {
+            trust *= 0.5;
+        }
+    }
+    let lin = Linear::new(pts, &best, k);
+    let (t_star, _) = stage_min(pts, &lo, spec, &lin, &best, trust, k)?;
+    let (w_star, _) = stage_max(pts, &lo, spec, &lin, &best, trust, k, t_star)?;
+    let l = stage_rms(pts, &lo, spec, &lin, &best, trust, k, t_star, w_star)?;
+    let mut l = l;
+    l.push(l[0]);
+    Ok(l)
+}
+
+/// `lambda`'s dependence on `l` at each node, linear: `lambda_i = c1_i l_i + c0_i + s_i`
+/// (exact for `k = 0`; linearised `R` for `k = 1`).
+struct Linear {
+    c1: Vec<f64>,
+    c0: Vec<f64>,
+}
+
+impl Linear {
+    fn new(pts: &[CircuitPoint], l0: &[f64], k: f64) -> Self {
+        let n = pts.len() - 1;
+        let mut c1 = vec![1.0; n];
+        let mut c0 = vec![0.0; n];
+        if k != 0.0 {
+            for i in 0..n {
+                let (_, r, _, _, g) = eye_at(&pts[i], l0[i]);
+                c1[i] = 1.0 - k * g;
+                c0[i] = -k * (r - g * l0[i]);
+            }
+        }
+        Self { c1, c0 }
+    }
+}
+
+fn exact_u_min(pts: &[CircuitPoint], l: &[f64], k: f64) -> f64 {
+    let n = pts.len() - 1;
+    let lam = |i: usize| {
+        let li = l[i % n];
+        let (_, r, _, _, _) = eye_at(&pts[i], li);
+        li + pts[i].x - k * r
+    };
+    (0..n)
+        .map(|i| (lam(i + 1) - lam(i)) / (pts[i + 1].x - pts[i].x))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Rows common to every stage: bounds, trust region, no slack.
+fn common_rows(
+    prob: &mut Problem,
+    pts: &[CircuitPoint],
+    lo: &[f64],
+    spec: &EyeSpec,
+    l0: &[f64],
+    trust: f64,
+    k: f64,
+) {
+    let n = lo.len();
+    for i in 0..n {
+        let j = (i + 1) % n;
+        let dx = pts[i + 1].x - pts[i].x;
+        prob.le.push((vec![(i, -1.0)], -lo[i]));
+        prob.le.push((vec![(i, 1.0)], spec.l_max));
+        if k != 0.0 {
+            prob.le.push((vec![(i, 1.0)], l0[i] + trust));
+            prob.le.push((vec![(i, -1.0)], -(l0[i] - trust)));
+        }
+        // No slack: l_j - l_i + dx >= 0.
+        prob.le.push((vec![(i, 1.0), (j, -1.0)], dx));
+    }
+}
+
+/// `u_i = 1 + (D_i + e_i)/dx_i` with `D_i = c1_j l_j - c1_i l_i`: the coefficients of
+/// `D_i / dx_i` and the constant `1 + e_i / dx_i`.
+fn u_terms(pts: &[CircuitPoint], lin: &Linear, i: usize) -> (Vec<(usize, f64)>, f64) {
+    let n = lin.c1.len();
+    let j = (i + 1) % n;
+    let dx = pts[i + 1].x - pts[i].x;
+    (
+        vec![(j, lin.c1[j] / dx), (i, -lin.c1[i] / dx)],
+        1.0 + (lin.c0[j] - lin.c0[i]) / dx,
+    )
+}
+
+fn stage_min(
+    pts: &[CircuitPoint],
+    lo: &[f64],
+    spec: &EyeSpec,
+    lin: &Linear,
+    l0: &[f64],
+    trust: f64,
+    k: f64,
+) -> Result<(f64, Vec<f64>), WindingError> {
+    let n = lo.len();
+    let mut prob = Problem::new(n + 1);
+    prob.q[n] = -1.0;
+    common_rows(&mut prob, pts, lo, spec, l0, trust, k);
+    for i in 0..n {
+        // t <= u_i  ->  t - D_i/dx <= const
+        let (mut row, c) = u_terms(pts, lin, i);
+        for e in &mut row {
+            e.1 = -e.1;
+        }
+        row.push((n, 1.0));
+        prob.le.push((row, c));
+    }
+    let x = prob.solve("stage 1 (max min u)")?;
+    Ok((x[n], x[..n].to_vec()))
+}
+
+#[allow(clippy::too_many_arguments)]
+fn stage_max(
+    pts: &[CircuitPoint],
+    lo: &[f64],
+    spec: &EyeSpec,
+    lin: &Linear,
+    l0: &[f64],
+    trust: f64,
+    k: f64,
+    t_star: f64,
+) -> Result<(f64, Vec<f64>), WindingError> {
+    let n = lo.len();
+    let mut prob = Problem::new(n + 1);
+    prob.q[n] = 1.0;
+    common_rows(&mut prob, pts, lo, spec, l0, trust, k);
+    let t_lo = t_star - 1e-7 * (1.0 + t_star.abs());
+    for i in 0..n {
+        let (row, c) = u_terms(pts, lin, i);
+        // u_i <= w  ->  D_i/dx - w <= -c
+        let mut up = row.clone();
+        up.push((n, -1.0));
+        prob.le.push((up, -c));
+        // u_i >= t*  ->  -D_i/dx <= c - t*
+        let down: Vec<(usize, f64)> = row.iter().map(|&(j, v)| (j, -v)).collect();
+        prob.le.push((down, c - t_lo));
+    }
+    let x = prob.solve("stage 2 (min max u)")?;
+    Ok((x[n], x[..n].to_vec()))
+}
+
+#[allow(clippy::too_many_arguments)]
+fn stage_rms(
+    pts: &[CircuitPoint],
+    lo: &[f64],
+    spec: &EyeSpec,
+    lin: &Linear,
+    l0: &[f64],
+    trust: f64,
+    k: f64,
+    t_star: f64,
+    w_star: f64,
+) -> Result<Vec<f64>, WindingError> {
+    let n = lo.len();
+    // Variables: l_0..l_{n-1}, u_0..u_{n-1}.
+    let mut prob = Problem::new(2 * n);
+    let total = pts[n].x - pts[0].x;
+    let t_lo = t_star - 1e-7 * (1.0 + t_star.abs());
+    let w_hi = w_star + 1e-7 * (1.0 + w_star.abs());
+    for i in 0..n {
+        let dx = pts[i + 1].x - pts[i].x;
+        let (row, c) = u_terms(pts, lin, i);
+        // u_i - D_i/dx = c
+        let mut eq: Vec<(usize, f64)> = row.iter().map(|&(j, v)| (j, -v)).collect();
+        eq.push((n + i, 1.0));
+        prob.eq.push((eq, c));
+        prob.le.push((vec![(n + i, 1.0)], w_hi));
+        prob.le.push((vec![(n + i, -1.0)], -t_lo));
+        // (u_i - U)^2 dx / X with U = 1 (the mean of u over a closed cycle).
+        let w = dx / total;
+        prob.p_diag.push((n + i, 2.0 * w));
+        prob.q[n + i] = -2.0 * w;
+    }
+    common_rows(&mut prob, pts, lo, spec, l0, trust, k);
+    let x = prob.solve("stage 3 (min rms of u - U)")?;
+    Ok(x[..n].to_vec())
+}

@@ -1,0 +1,245 @@
+//! The payout-eye trajectory: closed forms, geometry, constraints and the optimum.
+
+#![allow(clippy::unwrap_used)]
+
+mod common;
+
+use std::f64::consts::PI;
+
+use common::vessel;
+use formcam_geom::{Cylinder, Meridian};
+use formcam_winding::eye::{EyeMode, EyeSpec, eye_trajectory};
+use formcam_winding::{Circuit, Ends, LayerSpec, Slippage, plan_layer};
+
+fn tube_layer(cyl: &Cylinder, deg: f64) -> formcam_winding::Layer {
+    let spec = LayerSpec {
+        slippage: Slippage::Geodesic,
+        ends: Ends::Tube {
+            winding_angle: deg.to_radians(),
+        },
+        dwell_min: PI,
+        ..LayerSpec::default()
+    };
+    plan_layer(cyl, &spec).unwrap()
+}
+
+fn vessel_layer(v: &formcam_geom::Vessel) -> formcam_winding::Layer {
+    let spec = LayerSpec {
+        slippage: Slippage::Geodesic,
+        ends: Ends::Poles {
+            start: 30.0,
+            end: 30.0,
+        },
+        ..LayerSpec::default()
+    };
+    plan_layer(v, &spec).unwrap()
+}
+
+#[test]
+fn cylinder_axis_parallel_matches_the_closed_form() {
+    let cyl = Cylinder::new(50.0, 400.0).unwrap();
+    let layer = tube_layer(&cyl, 40.0);
+    let spec = EyeSpec {
+        mode: EyeMode::AxisParallel,
+        radius: Some(90.0),
+        clearance: 10.0,
+        l_max: 2000.0,
+        samples: 4001,
+        ..EyeSpec::default()
+    };
+    let eye = eye_trajectory(&cyl, &layer, &spec).unwrap();
+    let mut checked = 0;
+    for p in &eye.points {
+        // On the outgoing pass (alpha = 40 deg, z inside the tube).
+        if (p.alpha - 40f64.to_radians()).abs() < 1e-12 && p.z < 399.0 {
+            let l = (90.0f64 * 90.0 - 50.0 * 50.0).sqrt() / p.alpha.sin();
+            assert!((p.l - l).abs() < 1e-9, "l {} vs {l}", p.l);
+            assert!((p.eye_z - (p.z + l * p.alpha.cos())).abs() < 1e-9);
+            assert!((p.eye_r - 90.0).abs() < 1e-9);
+            checked += 1;
+        }
+    }
+    assert!(checked > 1000, "{checked}");
+}
+
+#[test]
+fn every_eye_point_lies_on_the_tangent_of_its_path_point() {
+    let v = vessel(30.0, 30.0);
+    let layer = vessel_layer(&v);
+    let circuit = Circuit::new(&v, &layer);
+    for mode in [
+        EyeMode::AxisParallel,
+        EyeMode::Equidistant,
+        EyeMode::PullSpeed,
+    ] {
+        let spec = EyeSpec {
+            mode,
+            radius: Some(160.0),
+            l_max: 600.0,
+            nodes: 400,
+            ..EyeSpec::default()
+        };
+        let eye = eye_trajectory(&v, &layer, &spec).unwrap();
+        for e in &eye.points {
+            let p = circuit.at(e.x);
+            // Path point and tangent in Cartesian coordinates (eqs. 8-9).
+            let (sv, cv) = p.v.sin_cos();
+            let q = (1.0 + p.dr * p.dr).sqrt();
+            let tau = [
+                (p.dr * cv) * p.alpha.cos() / q - sv * p.alpha.sin(),
+                (p.dr * sv) * p.alpha.cos() / q + cv * p.alpha.sin(),
+                p.alpha.cos() / q,
+            ];
+            let base = [p.r * cv, p.r * sv, p.z];
+            let eye_xyz = [e.eye_r * e.eye_v.cos(), e.eye_r * e.eye_v.sin(), e.eye_z];
+            let d = [
+                eye_xyz[0] - base[0],
+                eye_xyz[1] - base[1],
+                eye_xyz[2] - base[2],
+            ];
+            // Distance from the line base + t tau.
+            let t = d[0] * tau[0] + d[1] * tau[1] + d[2] * tau[2];
+            let off = ((d[0] - t * tau[0]).powi(2)
+                + (d[1] - t * tau[1]).powi(2)
+                + (d[2] - t * tau[2]).powi(2))
+            .sqrt();
+            assert!(
+                off < 1e-9,
+                "{mode:?}: {off} mm off the tangent at x = {}",
+                e.x
+            );
+            assert!(
+                (t - e.l).abs() < 1e-9,
+                "{mode:?}: along the tangent {t} vs l {}",
+                e.l
+            );
+        }
+    }
+}
+
+#[test]
+fn the_circuit_trajectory_closes() {
+    let v = vessel(30.0, 30.0);
+    let layer = vessel_layer(&v);
+    let cyl = Cylinder::new(50.0, 400.0).unwrap();
+    let tube = tube_layer(&cyl, 55.0);
+    for (m, layer) in [
+        (&v as &dyn Meridian, &layer),
+        (&cyl as &dyn Meridian, &tube),
+    ] {
+        for mode in [
+            EyeMode::AxisParallel,
+            EyeMode::Equidistant,
+            EyeMode::PullSpeed,
+        ] {
+            let spec = EyeSpec {
+                mode,
+                radius: Some(170.0),
+                l_max: 800.0,
+                nodes: 300,
+                ..EyeSpec::default()
+            };
+            let eye = eye_trajectory(&m, layer, &spec).unwrap();
+            assert!(
+                eye.closure_mm < 1e-9,
+                "{mode:?}: closure {}",
+                eye.closure_mm
+            );
+            let (a, b) = (eye.points.first().unwrap(), eye.points.last().unwrap());
+            assert!((b.eye_v - a.eye_v - eye.circuit_turn_rad).abs() < 1e-9);
+            assert!(
+                (eye.circuit_turn_rad - layer.report.turn_angle_circuit_with_dwell_rad).abs()
+                    < 1e-9,
+                "{} vs {}",
+                eye.circuit_turn_rad,
+                layer.report.turn_angle_circuit_with_dwell_rad
+            );
+        }
+    }
+}
+
+#[test]
+fn equidistant_keeps_the_clearance() {
+    let v = vessel(30.0, 30.0);
+    let layer = vessel_layer(&v);
+    let spec = EyeSpec {
+        mode: EyeMode::Equidistant,
+        clearance: 25.0,
+        l_max: 800.0,
+        ..EyeSpec::default()
+    };
+    let eye = eye_trajectory(&v, &layer, &spec).unwrap();
+    let (za, zb) = v.z_range();
+    for e in &eye.points {
+        // Distance from (Z, R) to the meridian and to the shaft beyond the ends.
+        let mut best = f64::INFINITY;
+        for i in 0..=20000 {
+            let z = za + (zb - za) * f64::from(i) / 20000.0;
+            best = best.min((e.eye_z - z).hypot(e.eye_r - v.r(z)));
+        }
+        if e.eye_z < za {
+            best = best.min(e.eye_r - 30.0);
+        }
+        if e.eye_z > zb {
+            best = best.min(e.eye_r - 30.0);
+        }
+        // The envelope is tabulated at clearance/400: kept to 0.2 % of the clearance.
+        assert!(
+            (best - 25.0).abs() < 0.05,
+            "clearance {best} at x = {}: {e:?}",
+            e.x
+        );
+    }
+}
+
+#[test]
+fn pull_speed_optimum_beats_the_geometric_trajectories() {
+    let v = vessel(30.0, 30.0);
+    let layer = vessel_layer(&v);
+    let cyl = Cylinder::new(50.0, 400.0).unwrap();
+    let tube = tube_layer(&cyl, 55.0);
+    for (name, m, layer) in [
+        ("vessel", &v as &dyn Meridian, &layer),
+        ("tube", &cyl as &dyn Meridian, &tube),
+    ] {
+        for fixed_bath in [false, true] {
+            let spec = EyeSpec {
+                mode: EyeMode::PullSpeed,
+                radius: Some(170.0),
+                l_max: 900.0,
+                bath_moves_with_eye: !fixed_bath,
+                nodes: 400,
+                ..EyeSpec::default()
+            };
+            let eye = eye_trajectory(&m, layer, &spec).unwrap();
+            assert!(eye.constraints_ok, "{name}: {:?}", eye.violations);
+            assert_eq!(eye.comparison.len(), 2);
+            for c in &eye.comparison {
+                assert!(
+                    eye.stats.u_min >= c.stats.u_min - 1e-6,
+                    "{name} fixed bath {fixed_bath}: u_min {} vs {:?} {}",
+                    eye.stats.u_min,
+                    c.mode,
+                    c.stats.u_min
+                );
+                assert!(
+                    eye.stats.u_max <= c.stats.u_max + 1e-6,
+                    "{name} fixed bath {fixed_bath}: u_max {} vs {:?} {}",
+                    eye.stats.u_max,
+                    c.mode,
+                    c.stats.u_max
+                );
+            }
+            eprintln!(
+                "{name} fixed bath {fixed_bath}: optimum u in [{:.4}, {:.4}] rms {:.4}; {:?}",
+                eye.stats.u_min,
+                eye.stats.u_max,
+                eye.stats.u_rms_dev,
+                eye.comparison
+                    .iter()
+                    .map(|c| (c.mode, c.stats.u_min, c.stats.u_max, c.stats.u_rms_dev))
+                    .collect::<Vec<_>>()
+            );
+        }
+    }
+}

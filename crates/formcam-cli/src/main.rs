@@ -42,7 +42,15 @@ enum WindCommand {
     Path {
         /// The job file (TOML with [mandrel] and [winding]).
         job: PathBuf,
-        /// Output folder (path.csv, summary.json).
+        /// Output folder (path.csv, path.svg, summary.json).
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+    /// The payout-eye trajectory over one circuit and its pull speed.
+    Eye {
+        /// The job file (TOML with [mandrel], [winding] and [eye]).
+        job: PathBuf,
+        /// Output folder (eye.csv, eye.svg, path.csv, path.svg, summary.json).
         #[arg(short, long)]
         output: PathBuf,
     },
@@ -58,6 +66,9 @@ fn main() -> ExitCode {
         Command::Wind {
             what: WindCommand::Path { job, output },
         } => wind::run_path(&job, &output).map(|s| println!("{s}")),
+        Command::Wind {
+            what: WindCommand::Eye { job, output },
+        } => wind::run_eye(&job, &output).map(|s| println!("{s}")),
         Command::Demo { examples, output } => wind::run_demo(&examples, &output),
     };
     match result {

@@ -124,3 +124,89 @@ pub fn layer_svg(title: &str, mandrel: &impl Meridian, layer: &Layer) -> Result<
     }
     Ok(svg.into_bytes())
 }
+
+/// The eye trajectory in the `Z x R` plane with the path, and `l(x)`, `u(x)`.
+pub fn eye_svg(title: &str, t: &formcam_winding::eye::EyeTrajectory) -> Result<Vec<u8>, CliError> {
+    let err = |e: String| CliError(format!("eye.svg: {e}"));
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (900, 900)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+        let root = root
+            .titled(title, ("sans-serif", 20))
+            .map_err(|e| err(e.to_string()))?;
+        let panels = root.split_evenly((3, 1));
+        let pts = &t.points;
+        type Series<'a> = (&'a str, Vec<(f64, f64)>, RGBColor);
+        let plots: [(&str, &str, Vec<Series>); 3] = [
+            (
+                "Z, mm",
+                "R, mm",
+                vec![
+                    (
+                        "path (z, r)",
+                        pts.iter().map(|p| (p.z, p.r)).collect(),
+                        BLACK,
+                    ),
+                    (
+                        "eye (Z, R)",
+                        pts.iter().map(|p| (p.eye_z, p.eye_r)).collect(),
+                        RED,
+                    ),
+                ],
+            ),
+            (
+                "x (laid band length), mm",
+                "free length, mm",
+                vec![
+                    ("l", pts.iter().map(|p| (p.x, p.l)).collect(), RED),
+                    (
+                        "l_min (clearance)",
+                        pts.iter().map(|p| (p.x, p.l_min)).collect(),
+                        BLUE,
+                    ),
+                ],
+            ),
+            (
+                "x (laid band length), mm",
+                "pull speed u",
+                vec![(
+                    "u = d lambda / dx",
+                    pts.iter().map(|p| (p.x, p.u)).collect(),
+                    GREEN,
+                )],
+            ),
+        ];
+        for (area, (xlabel, ylabel, series)) in panels.iter().zip(plots) {
+            let (x0, x1) = range(series.iter().flat_map(|s| s.1.iter().map(|q| q.0)));
+            let (y0, y1) = range(series.iter().flat_map(|s| s.1.iter().map(|q| q.1)));
+            let mut chart = ChartBuilder::on(area)
+                .margin(10)
+                .x_label_area_size(35)
+                .y_label_area_size(60)
+                .build_cartesian_2d(x0..x1, y0..y1)
+                .map_err(|e| err(e.to_string()))?;
+            chart
+                .configure_mesh()
+                .x_desc(xlabel)
+                .y_desc(ylabel)
+                .draw()
+                .map_err(|e| err(e.to_string()))?;
+            for (label, data, color) in series {
+                chart
+                    .draw_series(LineSeries::new(data, color.stroke_width(2)))
+                    .map_err(|e| err(e.to_string()))?
+                    .label(label)
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+            }
+            chart
+                .configure_series_labels()
+                .border_style(BLACK)
+                .background_style(WHITE.mix(0.8))
+                .draw()
+                .map_err(|e| err(e.to_string()))?;
+        }
+        root.present().map_err(|e| err(e.to_string()))?;
+    }
+    Ok(svg.into_bytes())
+}

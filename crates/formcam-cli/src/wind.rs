@@ -6,7 +6,8 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use formcam_winding::job::{MandrelSpec, WindingSpec};
+use formcam_winding::eye::{EyeSpec, EyeTrajectory, eye_trajectory};
+use formcam_winding::job::{EyeJob, Mandrel, MandrelSpec, WindingSpec};
 use formcam_winding::{Layer, plan_layer};
 use serde::Deserialize;
 use serde_json::json;
@@ -19,6 +20,7 @@ use crate::output::write_all;
 struct Job {
     mandrel: Option<MandrelSpec>,
     winding: Option<WindingSpec>,
+    eye: Option<EyeJob>,
     #[serde(flatten)]
     _other: BTreeMap<String, toml::Value>,
 }
@@ -40,8 +42,15 @@ fn line_col(text: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
+/// A job read and planned.
+struct Planned {
+    mandrel: Mandrel,
+    layer: Layer,
+    eye: Option<EyeSpec>,
+}
+
 /// Plans the layer of a job; errors name the job file and the field.
-fn plan(job_path: &Path) -> Result<(formcam_winding::job::Mandrel, Layer), CliError> {
+fn plan(job_path: &Path) -> Result<Planned, CliError> {
     let job = read_job(job_path)?;
     let here = |e: formcam_winding::WindingError| CliError(format!("{}: {e}", job_path.display()));
     let mspec = job
@@ -51,15 +60,19 @@ fn plan(job_path: &Path) -> Result<(formcam_winding::job::Mandrel, Layer), CliEr
         .winding
         .ok_or_else(|| CliError(format!("{}: [winding]: missing table", job_path.display())))?;
     let dir = job_path.parent().map(Path::to_path_buf).unwrap_or_default();
-    let mandrel = mspec
-        .build(|name| {
-            let p: PathBuf = dir.join(name);
-            fs::read_to_string(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))
-        })
-        .map_err(here)?;
+    let read = |name: &str| {
+        let p: PathBuf = dir.join(name);
+        fs::read_to_string(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))
+    };
+    let mandrel = mspec.build(read).map_err(here)?;
     let spec = wspec.layer_spec(&mandrel).map_err(here)?;
+    let eye = job.eye.map(|e| e.spec(read)).transpose().map_err(here)?;
     let layer = plan_layer(&mandrel, &spec).map_err(here)?;
-    Ok((mandrel, layer))
+    Ok(Planned {
+        mandrel,
+        layer,
+        eye,
+    })
 }
 
 fn path_csv(layer: &Layer) -> Vec<u8> {
@@ -83,9 +96,9 @@ fn path_csv(layer: &Layer) -> Vec<u8> {
     s.into_bytes()
 }
 
-fn summary_json(job: &Path, kind: &str, layer: &Layer) -> Result<Vec<u8>, CliError> {
+fn summary_value(job: &Path, kind: &str, layer: &Layer) -> serde_json::Value {
     let mu = layer.pass.mu.unwrap_or(layer.pass.mu_max_abs);
-    let v = json!({
+    json!({
         "job": job.display().to_string(),
         "mandrel": kind,
         "method": layer.pass.method,
@@ -103,33 +116,74 @@ fn summary_json(job: &Path, kind: &str, layer: &Layer) -> Result<Vec<u8>, CliErr
         "pattern": layer.pattern,
         "report": layer.report,
         "warnings": layer.warnings,
-    });
-    serde_json::to_vec_pretty(&v).map_err(|e| CliError(format!("summary.json: {e}")))
+    })
 }
 
 /// `formcam wind path JOB -o OUT`; returns a one-line summary.
 pub fn run_path(job: &Path, out: &Path) -> Result<String, CliError> {
+    run(job, out, false)
+}
+
+/// `formcam wind eye JOB -o OUT`: the path outputs plus the eye trajectory.
+pub fn run_eye(job: &Path, out: &Path) -> Result<String, CliError> {
+    run(job, out, true)
+}
+
+fn run(job: &Path, out: &Path, with_eye: bool) -> Result<String, CliError> {
     let t0 = Instant::now();
-    let (mandrel, layer) = plan(job)?;
-    let title = format!(
-        "{}: {} mandrel, one pass",
-        job.file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default(),
-        mandrel.kind()
-    );
-    let files = [
+    let Planned {
+        mandrel,
+        layer,
+        eye,
+    } = plan(job)?;
+    let name = job
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let title = format!("{name}: {} mandrel, one pass", mandrel.kind());
+    let mut summary = summary_value(job, mandrel.kind(), &layer);
+    let mut files = vec![
         ("path.csv", path_csv(&layer)),
-        ("summary.json", summary_json(job, mandrel.kind(), &layer)?),
         (
             "path.svg",
             crate::plot::layer_svg(&title, &mandrel, &layer)?,
         ),
     ];
+    let mut eye_line = String::new();
+    if with_eye {
+        let spec =
+            eye.ok_or_else(|| CliError(format!("{}: [eye]: missing table", job.display())))?;
+        let traj = eye_trajectory(&mandrel, &layer, &spec)
+            .map_err(|e| CliError(format!("{}: {e}", job.display())))?;
+        add_eye_summary(&mut summary, &traj);
+        files.push(("eye.csv", eye_csv(&traj)));
+        files.push((
+            "eye.svg",
+            crate::plot::eye_svg(&format!("{name}: payout eye over one circuit"), &traj)?,
+        ));
+        eye_line = format!(
+            "; eye {}: u in [{:.4}, {:.4}], rms {:.4}, constraints {}",
+            serde_json::to_value(traj.mode)
+                .ok()
+                .and_then(|v| v.as_str().map(String::from))
+                .unwrap_or_default(),
+            traj.stats.u_min,
+            traj.stats.u_max,
+            traj.stats.u_rms_dev,
+            if traj.constraints_ok {
+                "ok"
+            } else {
+                "VIOLATED"
+            }
+        );
+    }
+    let json =
+        serde_json::to_vec_pretty(&summary).map_err(|e| CliError(format!("summary.json: {e}")))?;
+    files.push(("summary.json", json));
     write_all(out, &files)?;
     let mut line = format!(
         "{}: {} path, mu {:.5}, alpha at equator {:.3} deg, {} circuits (pattern {} skip {}), dwell {:.2} deg, \
-         fibre {:.1} m, {:.1} ms -> {}",
+         fibre {:.1} m{eye_line}, {:.1} ms -> {}",
         job.display(),
         serde_json::to_value(layer.pass.method)
             .ok()
@@ -149,6 +203,31 @@ pub fn run_path(job: &Path, out: &Path) -> Result<String, CliError> {
         let _ = write!(line, "\n  warning: {w}");
     }
     Ok(line)
+}
+
+fn add_eye_summary(summary: &mut serde_json::Value, t: &EyeTrajectory) {
+    if let Some(obj) = summary.as_object_mut() {
+        obj.insert("eye_mode".into(), json!(t.mode));
+        obj.insert("u_min".into(), json!(t.stats.u_min));
+        obj.insert("u_max".into(), json!(t.stats.u_max));
+        obj.insert("u_rms_dev".into(), json!(t.stats.u_rms_dev));
+        obj.insert("constraints_ok".into(), json!(t.constraints_ok));
+        obj.insert("violations".into(), json!(t.violations));
+        obj.insert("eye".into(), json!(t));
+    }
+}
+
+fn eye_csv(t: &EyeTrajectory) -> Vec<u8> {
+    let mut s = String::with_capacity(t.points.len() * 200);
+    s.push_str("x,z,r,v,alpha,l,eye_z,eye_r,eye_v,lambda,u,l_min\n");
+    for p in &t.points {
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{},{},{},{},{},{},{}",
+            p.x, p.z, p.r, p.v, p.alpha, p.l, p.eye_z, p.eye_r, p.eye_v, p.lambda, p.u, p.l_min
+        );
+    }
+    s.into_bytes()
 }
 
 /// Runs every `*.toml` job in `examples` into `out/<name>/`.
@@ -175,7 +254,8 @@ pub fn run_demo(examples: &Path, out: &Path) -> Result<(), CliError> {
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
-        let line = run_path(job, &out.join(&name))?;
+        let has_eye = read_job(job)?.eye.is_some();
+        let line = run(job, &out.join(&name), has_eye)?;
         println!("{line}");
     }
     println!("{} jobs written under {}", jobs.len(), out.display());

@@ -246,3 +246,115 @@ fn demo_runs_every_example() {
         }
     }
 }
+
+#[test]
+fn wind_eye_writes_the_trajectory_and_its_summary() {
+    let out = scratch("eye").join("out");
+    let st = formcam()
+        .args(["wind", "eye"])
+        .arg(examples().join("vessel-eye-pull-speed.toml"))
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    let csv = std::fs::read_to_string(out.join("eye.csv")).unwrap();
+    let header = csv.lines().next().unwrap();
+    assert!(
+        header.starts_with("x,z,r,v,alpha,l,eye_z,eye_r,eye_v,lambda,u"),
+        "{header}"
+    );
+    assert_eq!(csv.lines().count(), 1 + 1001);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["eye_mode"], "pull-speed");
+    assert_eq!(summary["constraints_ok"], true);
+    assert!(summary["violations"].as_array().unwrap().is_empty());
+    let (lo, hi) = (
+        summary["u_min"].as_f64().unwrap(),
+        summary["u_max"].as_f64().unwrap(),
+    );
+    assert!(lo > 0.0 && lo <= 1.0 && hi >= 1.0, "{lo} {hi}");
+    assert!(summary["u_rms_dev"].as_f64().unwrap() >= 0.0);
+    // The path outputs come along.
+    assert!(out.join("path.csv").exists() && out.join("eye.svg").exists());
+}
+
+#[test]
+fn bad_eye_tables_fail_with_one_line_naming_the_field() {
+    let w = "[winding]\nmu = 0.0\nband_width = 10.0\nband_thickness = 0.5\n";
+    let job = |eye: &str| format!("{VESSEL}{w}[eye]\n{eye}");
+    let cases: Vec<(&str, String, &str)> = vec![
+        (
+            "eye-inside",
+            job("mode = \"axis-parallel\"\nradius = 80.0\nl_max = 400.0\n"),
+            "eye.radius",
+        ),
+        (
+            "eye-no-radius",
+            job("mode = \"axis-parallel\"\nl_max = 400.0\n"),
+            "eye.radius",
+        ),
+        (
+            "eye-mode",
+            job("mode = \"wobble\"\nl_max = 400.0\n"),
+            "eye.mode",
+        ),
+        ("eye-no-lmax", job("mode = \"equidistant\"\n"), "eye.l_max"),
+        (
+            "eye-clearance",
+            job("mode = \"pull-speed\"\nclearance = 20.0\nl_max = 100.0\n"),
+            "eye.l_max",
+        ),
+        (
+            "eye-no-curve",
+            job("mode = \"curve\"\nl_max = 400.0\n"),
+            "eye.curve",
+        ),
+        (
+            "eye-negative",
+            job("mode = \"equidistant\"\nclearance = -5.0\nl_max = 400.0\n"),
+            "eye.clearance",
+        ),
+    ];
+    for (name, text, field) in cases {
+        let dir = scratch(name);
+        let path = dir.join("job.toml");
+        std::fs::write(&path, &text).unwrap();
+        let out = dir.join("out");
+        let st = formcam()
+            .args(["wind", "eye"])
+            .arg(&path)
+            .arg("-o")
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(!st.status.success(), "{name}: should fail");
+        assert!(!out.exists(), "{name}: a failed run wrote output");
+        let err = String::from_utf8_lossy(&st.stderr).trim_end().to_string();
+        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        assert!(err.contains(field), "{name}: {field} not named in {err}");
+    }
+    // A curve that does not cover the winding zone.
+    let dir = scratch("eye-short-curve");
+    std::fs::write(dir.join("c.csv"), "Z,R\n100,200\n200,200\n").unwrap();
+    let path = dir.join("job.toml");
+    std::fs::write(
+        &path,
+        job("mode = \"curve\"\ncurve = \"c.csv\"\nl_max = 400.0\n"),
+    )
+    .unwrap();
+    let st = formcam()
+        .args(["wind", "eye"])
+        .arg(&path)
+        .arg("-o")
+        .arg(dir.join("out"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&st.stderr).to_string();
+    assert!(!st.status.success() && err.contains("eye.curve"), "{err}");
+}

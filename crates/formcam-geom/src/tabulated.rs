@@ -1,4 +1,4 @@
-use crate::{CubicSpline, GeomError, Jet, Meridian};
+use crate::{CubicSpline, GeomError, Jet, Meridian, read_pairs};
 
 /// A meridian given as a table of `(z, r)` points, made C2 by a [`CubicSpline`]
 /// so that `r''` exists everywhere.
@@ -69,66 +69,13 @@ impl Tabulated {
     /// field is a number (a header such as `z,r`). Row numbers in errors count
     /// data lines only.
     pub fn from_csv_str(text: &str, smoothing: f64) -> Result<Self, GeomError> {
-        let mut points = Vec::new();
-        let mut first = true;
-        let lines = text
-            .lines()
-            .map(|l| l.trim_start_matches('\u{feff}').trim());
-        for line in lines.filter(|l| !l.is_empty() && !l.starts_with('#')) {
-            let fields = split_fields(line);
-            if std::mem::take(&mut first) && fields.iter().all(|f| parse_number(f).is_none()) {
-                continue;
-            }
-            let row = points.len() + 1;
-            if fields.len() != 2 {
-                return Err(GeomError::Table {
-                    row,
-                    reason: format!("expected 2 values (z, r), found {}: '{line}'", fields.len()),
-                });
-            }
-            let read = |name: &str, field: &str| {
-                parse_number(field).ok_or_else(|| GeomError::Table {
-                    row,
-                    reason: format!("cannot read {name}: '{field}'"),
-                })
-            };
-            points.push((read("z", fields[0])?, read("r", fields[1])?));
-        }
-        Self::new(&points, smoothing)
+        Self::new(&read_pairs(text, ("z", "r"))?, smoothing)
     }
 
     /// The spline through the table.
     pub fn spline(&self) -> &CubicSpline {
         &self.spline
     }
-}
-
-/// The fields of one CSV line: split on `;` if present, else on `,` if
-/// present, else on whitespace. Trailing empty fields are dropped.
-fn split_fields(line: &str) -> Vec<&str> {
-    let mut fields: Vec<&str> = if line.contains(';') {
-        line.split(';').map(str::trim).collect()
-    } else if line.contains(',') {
-        line.split(',').map(str::trim).collect()
-    } else {
-        line.split_whitespace().collect()
-    };
-    while fields.last().is_some_and(|f| f.is_empty()) {
-        fields.pop();
-    }
-    fields
-}
-
-/// A finite number, with a decimal comma accepted in place of the point.
-fn parse_number(field: &str) -> Option<f64> {
-    let value = match field.parse::<f64>() {
-        Ok(v) => v,
-        Err(_) if field.contains(',') && !field.contains('.') => {
-            field.replace(',', ".").parse().ok()?
-        }
-        Err(_) => return None,
-    };
-    value.is_finite().then_some(value)
 }
 
 impl Meridian for Tabulated {

@@ -402,3 +402,78 @@ impl WindingSpec {
         })
     }
 }
+
+/// `[eye]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EyeJob {
+    /// `axis-parallel | equidistant | curve | pull-speed`.
+    pub mode: Option<String>,
+    /// Axis-parallel: radius of the eye's line, mm (also the comparison in pull-speed).
+    pub radius: Option<f64>,
+    /// Least clearance to the mandrel (and the equidistant's), mm; default 20.
+    pub clearance: Option<f64>,
+    /// Largest free length, mm.
+    pub l_max: Option<f64>,
+    /// `true`: the bath moves with the eye (`k = 0`); `false`: fixed bath (`k = 1`).
+    pub bath_moves_with_eye: Option<bool>,
+    /// Curve mode: CSV file of `Z,R` points, relative to the job file.
+    pub curve: Option<String>,
+    /// Points of a geometric trajectory (default 2001).
+    pub samples: Option<usize>,
+    /// Intervals of the optimised `l(x)` (default 2000).
+    pub nodes: Option<usize>,
+}
+
+impl EyeJob {
+    /// The eye specification; `read` loads a file named by the job (the curve).
+    pub fn spec(
+        &self,
+        read: impl Fn(&str) -> Result<String, String>,
+    ) -> Result<crate::eye::EyeSpec, WindingError> {
+        use crate::eye::{EyeMode, EyeSpec};
+        let mode = match self.mode.as_deref() {
+            Some("axis-parallel") => EyeMode::AxisParallel,
+            Some("equidistant") => EyeMode::Equidistant,
+            Some("curve") => EyeMode::Curve,
+            Some("pull-speed") | None => EyeMode::PullSpeed,
+            Some(other) => {
+                return Err(WindingError::field(
+                    "eye.mode",
+                    format!(
+                        "unknown mode \"{other}\"; allowed: axis-parallel, equidistant, curve, pull-speed"
+                    ),
+                ));
+            }
+        };
+        let curve = match (mode, self.curve.as_deref()) {
+            (EyeMode::Curve, None) => {
+                return Err(WindingError::field(
+                    "eye.curve",
+                    "missing: a CSV file of Z,R points (mm)",
+                ));
+            }
+            (_, Some(file)) => {
+                let text = read(file).map_err(|e| WindingError::field("eye.curve", e))?;
+                formcam_geom::read_pairs(&text, ("Z", "R"))
+                    .map_err(|e| WindingError::field("eye.curve", format!("{file}: {e}")))?
+            }
+            (_, None) => Vec::new(),
+        };
+        let defaults = EyeSpec::default();
+        Ok(EyeSpec {
+            mode,
+            radius: self.radius,
+            clearance: self.clearance.unwrap_or(defaults.clearance),
+            l_max: need(
+                "eye.l_max",
+                self.l_max,
+                "the largest free length in mm, > 0",
+            )?,
+            bath_moves_with_eye: self.bath_moves_with_eye.unwrap_or(true),
+            curve,
+            samples: self.samples.unwrap_or(defaults.samples),
+            nodes: self.nodes.unwrap_or(defaults.nodes),
+        })
+    }
+}

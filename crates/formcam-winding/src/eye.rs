@@ -176,7 +176,7 @@ pub fn eye_at(p: &CircuitPoint, l: f64) -> (f64, f64, f64, f64, f64) {
     let sa = p.alpha.sin();
     let d = p.r + l * a;
     let w = l * sa;
-    let rr = d.hypot(w);
+    let rr = (d * d + w * w).sqrt();
     let dr_dl = if rr > 0.0 { (d * a + w * sa) / rr } else { 0.0 };
     (p.z + l * ca, rr, p.v + w.atan2(d), ca, dr_dl)
 }
@@ -245,8 +245,10 @@ fn clearance_envelope<M: Meridian>(m: &M, c: f64, reach: f64) -> Profile {
             }
         })
         .collect();
-    let samples = 4096usize
-        .max(((zb - za) / (c / 20.0)).ceil() as usize)
+    // Meridian samples every c/50 (at least 1024): between two the disc envelope
+    // sags by at most (c/100)^2 / (2c) = c/20000.
+    let samples = 1024usize
+        .max(((zb - za) / (c / 50.0)).ceil() as usize)
         .min(1 << 16);
     for k in 0..=samples {
         let zk = za + (zb - za) * k as f64 / samples as f64;
@@ -315,28 +317,37 @@ fn curve_profile(curve: &[(f64, f64)]) -> Result<Profile, WindingError> {
 /// The first free length at which the eye reaches the curve `R = f(Z)` (from inside),
 /// starting the search near `guess`. `None` when it is not reached before `l_hi`.
 fn length_to_profile(p: &CircuitPoint, f: &Profile, guess: f64, l_hi: f64) -> Option<f64> {
+    // Only Z and R are needed here (no arctangent for V).
+    let q = (1.0 + p.dr * p.dr).sqrt();
+    let ca = p.alpha.cos() / q;
+    let ra = p.dr * ca;
+    let sa = p.alpha.sin();
     let g = |l: f64| {
-        let (z, r, _, _, _) = eye_at(p, l);
-        r - f.at(z).0
+        let (d, w) = (p.r + l * ra, l * sa);
+        (d * d + w * w).sqrt() - f.at(p.z + l * ca).0
     };
-    if g(0.0) >= 0.0 {
+    let f0 = g(0.0);
+    if f0 >= 0.0 {
         return Some(0.0);
     }
-    // Bracket the first sign change: march from 0 with a step tied to the guess,
-    // so that a smaller root is not skipped.
-    let step = (0.25 * guess).max(1.0);
-    let (mut a, mut fa) = (0.0, g(0.0));
-    let mut b = a;
-    let mut fb = fa;
-    // Jump close to the guess when the curve is still ahead there.
-    if guess > step {
-        let gl = guess - step;
-        let fg = g(gl);
-        if fg < 0.0 {
-            a = gl;
-            fa = fg;
+    // Bracket the first sign change. Neighbouring points have nearly the same
+    // root: start just below the guess with a small step when the curve is still
+    // ahead there; otherwise march from 0 with a coarse step.
+    let (mut a, mut fa) = (0.0, f0);
+    let mut step = (0.25 * guess).max(1.0);
+    if guess > 0.0 {
+        let near = (0.02 * guess).max(0.05);
+        let gl = guess - near;
+        if gl > 0.0 {
+            let fg = g(gl);
+            if fg < 0.0 {
+                (a, fa) = (gl, fg);
+                step = near;
+            }
         }
     }
+    let mut b = a;
+    let mut fb = fa;
     while b < l_hi {
         b = (a + step).min(l_hi);
         fb = g(b);
@@ -547,7 +558,7 @@ pub fn eye_trajectory<M: Meridian>(
         mode => (geometric(mode)?, Vec::new()),
     };
     let points = eye_points(&pts, &l, &l_min, k);
-    let (stats, _) = evaluate(&pts, &l, &l_min, spec, k);
+    let stats = stats(&points);
     let violations = violations(&points, spec);
     let turn = circuit.turn_angle();
     let closure_mm = closure(&points, turn);
@@ -807,9 +818,14 @@ fn optimise(
         let _ = t;
         let exact = exact_u_min(pts, &l, k);
         if exact > best_min + 1e-12 {
+            let gain = exact - best_min;
             best_min = exact;
             best = l.clone();
             l0 = l;
+            // Converged: the linearisation no longer moves the optimum.
+            if gain < 1e-6 {
+                break;
+            }
         } else {
             trust *= 0.5;
         }

@@ -155,18 +155,14 @@ pub fn eye_svg(title: &str, t: &formcam_winding::eye::EyeTrajectory) -> Result<V
                     ),
                 ],
             ),
-            (
-                "x (laid band length), mm",
-                "free length, mm",
-                vec![
-                    ("l", pts.iter().map(|p| (p.x, p.l)).collect(), RED),
-                    (
-                        "l_min (clearance)",
-                        pts.iter().map(|p| (p.x, p.l_min)).collect(),
-                        BLUE,
-                    ),
-                ],
-            ),
+            ("x (laid band length), mm", "free length, mm", {
+                let mut v = vec![("l", pts.iter().map(|p| (p.x, p.l)).collect(), RED)];
+                if t.l_min.len() == pts.len() {
+                    let lm = pts.iter().zip(&t.l_min).map(|(p, l)| (p.x, *l)).collect();
+                    v.push(("l_min (clearance)", lm, BLUE));
+                }
+                v
+            }),
             (
                 "x (laid band length), mm",
                 "pull speed u",

@@ -219,12 +219,12 @@ fn add_eye_summary(summary: &mut serde_json::Value, t: &EyeTrajectory) {
 
 fn eye_csv(t: &EyeTrajectory) -> Vec<u8> {
     let mut s = String::with_capacity(t.points.len() * 200);
-    s.push_str("x,z,r,v,alpha,l,eye_z,eye_r,eye_v,lambda,u,l_min\n");
+    s.push_str("x,z,r,v,alpha,l,eye_z,eye_r,eye_v,lambda,u,margin\n");
     for p in &t.points {
         let _ = writeln!(
             s,
             "{},{},{},{},{},{},{},{},{},{},{},{}",
-            p.x, p.z, p.r, p.v, p.alpha, p.l, p.eye_z, p.eye_r, p.eye_v, p.lambda, p.u, p.l_min
+            p.x, p.z, p.r, p.v, p.alpha, p.l, p.eye_z, p.eye_r, p.eye_v, p.lambda, p.u, p.margin
         );
     }
     s.into_bytes()

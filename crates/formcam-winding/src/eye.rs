@@ -95,8 +95,9 @@ pub struct EyePoint {
     pub alpha: f64,
     /// Free length, mm.
     pub l: f64,
-    /// Least free length that keeps the clearance, mm.
-    pub l_min: f64,
+    /// Radial margin of the eye over the clearance zone, `R - R_zone(Z)`, mm
+    /// (`>= 0`: the eye keeps the clearance).
+    pub margin: f64,
     /// Eye `Z`, mm.
     pub eye_z: f64,
     /// Eye `R`, mm.
@@ -166,6 +167,10 @@ pub struct EyeTrajectory {
     pub closure_mm: f64,
     /// The geometric trajectories on the same nodes (pull-speed mode only).
     pub comparison: Vec<Comparison>,
+    /// Least free length that keeps the clearance at each point (equidistant and
+    /// pull-speed modes; empty otherwise).
+    #[serde(skip)]
+    pub l_min: Vec<f64>,
 }
 
 /// Eye position for free length `l`: `(Z, R, V, dZ/dl, dR/dl)` (eq. 10).
@@ -393,17 +398,25 @@ fn length_to_profile(p: &CircuitPoint, f: &Profile, guess: f64, l_hi: f64) -> Op
 }
 
 /// Least free lengths (the clearance) at the given circuit points.
-fn least_lengths<M: Meridian>(
-    m: &M,
+/// Least free lengths that keep the clearance at the given circuit points.
+///
+/// `first`: the first exit of the eye from the clearance zone along the free band
+/// (the equidistant trajectory). Otherwise the last exit: the free band can dip
+/// back into the zone beyond a dome's end (towards the shaft), so the free lengths
+/// that keep the clearance from there on form one interval — what a convex
+/// optimisation needs.
+fn least_lengths(
+    env: &Profile,
     pts: &[CircuitPoint],
     spec: &EyeSpec,
+    first: bool,
 ) -> Result<Vec<f64>, WindingError> {
-    let env = clearance_envelope(m, spec.clearance, spec.l_max);
     let l_hi = 4.0 * spec.l_max + 10.0 * spec.clearance;
+    let top = env.vals.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let mut out = Vec::with_capacity(pts.len());
     let mut guess = 0.0;
     for p in pts {
-        let l = length_to_profile(p, &env, guess, l_hi).ok_or_else(|| {
+        let missing = || {
             WindingError::infeasible(
                 "eye.clearance",
                 format!(
@@ -412,11 +425,50 @@ fn least_lengths<M: Meridian>(
                     spec.clearance, p.x, p.z
                 ),
             )
-        })?;
+        };
+        let mut l = length_to_profile(p, env, guess, l_hi).ok_or_else(missing)?;
         guess = l;
+        if !first {
+            l = last_exit(p, env, l, l_hi, top).ok_or_else(missing)?;
+        }
         out.push(l);
     }
     Ok(out)
+}
+
+/// From a first exit `l0`, the last exit of the eye from the clearance zone: march
+/// along the free band until the eye is above the zone's highest point and rising.
+fn last_exit(p: &CircuitPoint, env: &Profile, l0: f64, l_hi: f64, top: f64) -> Option<f64> {
+    let step = 0.25 * (env.dz * 40.0).max(0.5);
+    let margin = |l: f64| {
+        let (z, r, _, _, dr) = eye_at(p, l);
+        (r - env.at(z).0, r, dr)
+    };
+    let mut last = l0;
+    let mut l = l0;
+    let mut inside = false;
+    while l < l_hi {
+        let (g, r, dr) = margin(l);
+        if g >= -1e-9 {
+            if inside {
+                // Refine the exit between l - step and l.
+                let (mut a, mut b) = (l - step, l);
+                for _ in 0..60 {
+                    let c = 0.5 * (a + b);
+                    if margin(c).0 >= 0.0 { b = c } else { a = c }
+                }
+                last = b;
+                inside = false;
+            }
+            if r >= top && dr >= 0.0 {
+                break;
+            }
+        } else {
+            inside = true;
+        }
+        l += step;
+    }
+    (!inside).then_some(last)
 }
 
 fn check_spec<M: Meridian>(m: &M, spec: &EyeSpec) -> Result<(), WindingError> {
@@ -474,7 +526,19 @@ pub fn eye_trajectory<M: Meridian>(
     let pts: Vec<CircuitPoint> = (0..=n)
         .map(|i| circuit.at(total * i as f64 / n as f64))
         .collect();
-    let l_min = least_lengths(m, &pts, spec)?;
+    let env = clearance_envelope(m, spec.clearance, spec.l_max);
+    let l_min = match spec.mode {
+        EyeMode::Equidistant => least_lengths(&env, &pts, spec, true)?,
+        EyeMode::PullSpeed => least_lengths(&env, &pts, spec, false)?,
+        _ => Vec::new(),
+    };
+    // The equidistant trajectory: the first exit from the clearance zone.
+    let l_equidistant = || -> Result<Vec<f64>, WindingError> {
+        match spec.mode {
+            EyeMode::Equidistant => Ok(l_min.clone()),
+            _ => least_lengths(&env, &pts, spec, true),
+        }
+    };
     let geometric = |mode: EyeMode| -> Result<Vec<f64>, WindingError> {
         match mode {
             EyeMode::AxisParallel => {
@@ -493,7 +557,7 @@ pub fn eye_trajectory<M: Meridian>(
                     })
                     .collect()
             }
-            EyeMode::Equidistant => Ok(l_min.clone()),
+            EyeMode::Equidistant => l_equidistant(),
             EyeMode::Curve => {
                 let prof = curve_profile(&spec.curve)?;
                 let (c0, c1) = (spec.curve[0].0, spec.curve[spec.curve.len() - 1].0);
@@ -539,7 +603,7 @@ pub fn eye_trajectory<M: Meridian>(
                 && let Ok(lap) = geometric(EyeMode::AxisParallel)
             {
                 {
-                    let (st, ok) = evaluate(&pts, &lap, &l_min, spec, k);
+                    let (st, ok) = evaluate(&pts, &lap, &env, spec, k);
                     comparison.push(Comparison {
                         mode: EyeMode::AxisParallel,
                         stats: st,
@@ -547,7 +611,7 @@ pub fn eye_trajectory<M: Meridian>(
                     });
                 }
             }
-            let (st, ok) = evaluate(&pts, &l_min, &l_min, spec, k);
+            let (st, ok) = evaluate(&pts, &l_equidistant()?, &env, spec, k);
             comparison.push(Comparison {
                 mode: EyeMode::Equidistant,
                 stats: st,
@@ -557,7 +621,7 @@ pub fn eye_trajectory<M: Meridian>(
         }
         mode => (geometric(mode)?, Vec::new()),
     };
-    let points = eye_points(&pts, &l, &l_min, k);
+    let points = eye_points(&pts, &l, &env, k);
     let stats = stats(&points);
     let violations = violations(&points, spec);
     let turn = circuit.turn_angle();
@@ -571,6 +635,7 @@ pub fn eye_trajectory<M: Meridian>(
         circuit_turn_rad: turn,
         closure_mm,
         comparison,
+        l_min,
     })
 }
 
@@ -582,11 +647,11 @@ fn unreachable_mode() -> Result<Vec<f64>, WindingError> {
 }
 
 /// Eye points from free lengths (cyclic: the last interval's `u` repeats the first).
-fn eye_points(pts: &[CircuitPoint], l: &[f64], l_min: &[f64], k: f64) -> Vec<EyePoint> {
+fn eye_points(pts: &[CircuitPoint], l: &[f64], env: &Profile, k: f64) -> Vec<EyePoint> {
     let mut out: Vec<EyePoint> = pts
         .iter()
-        .zip(l.iter().zip(l_min))
-        .map(|(p, (&l, &lm))| {
+        .zip(l)
+        .map(|(p, &l)| {
             let (ez, er, ev, _, _) = eye_at(p, l);
             EyePoint {
                 x: p.x,
@@ -595,7 +660,7 @@ fn eye_points(pts: &[CircuitPoint], l: &[f64], l_min: &[f64], k: f64) -> Vec<Eye
                 v: p.v,
                 alpha: p.alpha,
                 l,
-                l_min: lm,
+                margin: er - env.at(ez).0,
                 eye_z: ez,
                 eye_r: er,
                 eye_v: ev,
@@ -623,11 +688,11 @@ fn eye_points(pts: &[CircuitPoint], l: &[f64], l_min: &[f64], k: f64) -> Vec<Eye
 fn evaluate(
     pts: &[CircuitPoint],
     l: &[f64],
-    l_min: &[f64],
+    env: &Profile,
     spec: &EyeSpec,
     k: f64,
 ) -> (PullStats, bool) {
-    let e = eye_points(pts, l, l_min, k);
+    let e = eye_points(pts, l, env, k);
     (stats(&e), violations(&e, spec).is_empty())
 }
 
@@ -680,8 +745,8 @@ fn violations(e: &[EyePoint], spec: &EyeSpec) -> Vec<Violation> {
         note("cyclicity", b.x, (a.l - b.l).abs());
     }
     for p in e {
-        if p.l < p.l_min - 1e-6 * (1.0 + p.l_min) {
-            note("clearance", p.x, p.l_min - p.l);
+        if p.margin < -1e-6 * (1.0 + spec.clearance) {
+            note("clearance", p.x, -p.margin);
         }
         if p.l > spec.l_max + tol {
             note("l_max", p.x, p.l - spec.l_max);

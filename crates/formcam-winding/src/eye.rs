@@ -429,7 +429,7 @@ fn least_lengths(
         let mut l = length_to_profile(p, env, guess, l_hi).ok_or_else(missing)?;
         guess = l;
         if !first {
-            l = last_exit(p, env, l, l_hi, top).ok_or_else(missing)?;
+            l = last_exit(p, env, l, l_hi, top, spec.clearance).ok_or_else(missing)?;
         }
         out.push(l);
     }
@@ -438,8 +438,17 @@ fn least_lengths(
 
 /// From a first exit `l0`, the last exit of the eye from the clearance zone: march
 /// along the free band until the eye is above the zone's highest point and rising.
-fn last_exit(p: &CircuitPoint, env: &Profile, l0: f64, l_hi: f64, top: f64) -> Option<f64> {
-    let step = 0.25 * (env.dz * 40.0).max(0.5);
+fn last_exit(
+    p: &CircuitPoint,
+    env: &Profile,
+    l0: f64,
+    l_hi: f64,
+    top: f64,
+    clearance: f64,
+) -> Option<f64> {
+    // A dip into the zone is at least as long as the clearance is wide near its
+    // deepest point; an eighth of it is a safe stride.
+    let step = clearance / 8.0;
     let margin = |l: f64| {
         let (z, r, _, _, dr) = eye_at(p, l);
         (r - env.at(z).0, r, dr)

@@ -8,8 +8,8 @@
 //!   linearly in `x` from the arriving angle through `pi/2` to the leaving angle,
 //!   so the direction stays continuous; its length is chosen so that the mandrel
 //!   advances by the dwell (radius taken constant over the short excursion).
-//! * Where a pass leaves a dome on its polar boss (isotensoid), the boss part of
-//!   the turn and the dwell are a hoop arc at the meridian's end radius.
+//! * Where a pass leaves a dome on its polar boss (isotensoid), the turn is the
+//!   same sweep, the mandrel advancing by the boss part of the turn and the dwell.
 //!
 //! The return pass is the mirror image of the outgoing one: the same `z`
 //! profile, `alpha -> pi - alpha`, `v` still increasing.
@@ -116,30 +116,28 @@ impl Turnaround {
     pub fn new<M: Meridian>(m: &M, end: &PassEnd, dwell: f64, tube: bool, far: bool) -> Self {
         let z = end.z();
         let j = m.eval(z);
-        match (*end, tube) {
-            (PassEnd::Exit { alpha, .. }, true) if alpha < FRAC_PI_2 - 1e-9 => {
+        match *end {
+            PassEnd::Exit { alpha, .. } if alpha < FRAC_PI_2 - 1e-9 => {
+                // The mandrel advances by the dwell, and at a polar boss also by the
+                // rest of the turn on the boss face (pi/2 - alpha on each side).
+                let dv = dwell.max(0.0) + if tube { 0.0 } else { 2.0 * (FRAC_PI_2 - alpha) };
                 let span = PI - 2.0 * alpha;
-                let length = dwell.max(0.0) * j.r * span / (2.0 * alpha.cos());
+                let length = dv * j.r * span / (2.0 * alpha.cos());
                 let (alpha_in, alpha_out) = if far {
                     (alpha, PI - alpha)
                 } else {
                     (PI - alpha, alpha)
                 };
+                // The excursion is short: treated as a cylinder of the end radius.
                 Turnaround::Sweep {
                     z,
                     radius: j.r,
-                    dr: j.dr,
+                    dr: 0.0,
                     alpha_in,
                     alpha_out,
                     length,
                 }
             }
-            (PassEnd::Exit { alpha, .. }, false) => Turnaround::Hoop {
-                z,
-                radius: j.r,
-                dr: j.dr,
-                dv: dwell + 2.0 * (FRAC_PI_2 - alpha),
-            },
             _ => Turnaround::Hoop {
                 z,
                 radius: j.r,

@@ -145,6 +145,12 @@ pub struct Comparison {
     pub stats: PullStats,
     /// Whether it keeps every constraint.
     pub constraints_ok: bool,
+    /// How much higher the optimum's `u_min` is.
+    pub gain_u_min: f64,
+    /// How much lower the optimum's `u_max` is.
+    pub gain_u_max: f64,
+    /// How much lower the optimum's RMS of `u - U` is.
+    pub gain_u_rms_dev: f64,
 }
 
 /// An eye trajectory over one circuit.
@@ -411,8 +417,8 @@ fn least_lengths(
     spec: &EyeSpec,
     first: bool,
 ) -> Result<Vec<f64>, WindingError> {
-    let l_hi = 4.0 * spec.l_max + 10.0 * spec.clearance;
     let top = env.vals.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let l_hi = 4.0 * spec.l_max + 20.0 * top;
     let mut out = Vec::with_capacity(pts.len());
     let mut guess = 0.0;
     for p in pts {
@@ -493,11 +499,14 @@ fn check_spec<M: Meridian>(m: &M, spec: &EyeSpec) -> Result<(), WindingError> {
     };
     pos("eye.clearance", spec.clearance)?;
     pos("eye.l_max", spec.l_max)?;
-    if spec.samples < 3 {
-        return Err(WindingError::field("eye.samples", "must be >= 3"));
+    if !(101..=10_000_000).contains(&spec.samples) {
+        return Err(WindingError::field(
+            "eye.samples",
+            "must be in [101, 10000000]",
+        ));
     }
-    if !(16..=200_000).contains(&spec.nodes) {
-        return Err(WindingError::field("eye.nodes", "must be in [16, 200000]"));
+    if !(100..=200_000).contains(&spec.nodes) {
+        return Err(WindingError::field("eye.nodes", "must be in [100, 200000]"));
     }
     if spec.mode == EyeMode::AxisParallel {
         let radius = spec.radius.ok_or_else(|| {
@@ -537,7 +546,20 @@ pub fn eye_trajectory<M: Meridian>(
         .collect();
     let env = clearance_envelope(m, spec.clearance, spec.l_max);
     let l_min = match spec.mode {
-        EyeMode::Equidistant => least_lengths(&env, &pts, spec, true)?,
+        EyeMode::Equidistant => {
+            let l = least_lengths(&env, &pts, spec, true)?;
+            if let Some((i, li)) = l.iter().enumerate().find(|(_, li)| **li > spec.l_max) {
+                return Err(WindingError::infeasible(
+                    "eye.clearance",
+                    format!(
+                        "keeping {} mm from the mandrel needs a free length of {li:.3} mm at x = {:.3} mm \
+                         (z = {:.3} mm), more than l_max = {} mm",
+                        spec.clearance, pts[i].x, pts[i].z, spec.l_max
+                    ),
+                ));
+            }
+            l
+        }
         EyeMode::PullSpeed => least_lengths(&env, &pts, spec, false)?,
         _ => Vec::new(),
     };
@@ -571,7 +593,7 @@ pub fn eye_trajectory<M: Meridian>(
                 let prof = curve_profile(&spec.curve)?;
                 let (c0, c1) = (spec.curve[0].0, spec.curve[spec.curve.len() - 1].0);
                 let mut guess = 0.0;
-                let l_hi = 4.0 * spec.l_max + 10.0 * spec.clearance;
+                let l_hi = 4.0 * spec.l_max + 20.0 * prof.vals.iter().copied().fold(0.0, f64::max);
                 pts.iter()
                     .map(|p| {
                         if prof.at(p.z).0 <= p.r && p.z >= c0 && p.z <= c1 {
@@ -617,6 +639,9 @@ pub fn eye_trajectory<M: Meridian>(
                         mode: EyeMode::AxisParallel,
                         stats: st,
                         constraints_ok: ok,
+                        gain_u_min: 0.0,
+                        gain_u_max: 0.0,
+                        gain_u_rms_dev: 0.0,
                     });
                 }
             }
@@ -625,6 +650,9 @@ pub fn eye_trajectory<M: Meridian>(
                 mode: EyeMode::Equidistant,
                 stats: st,
                 constraints_ok: ok,
+                gain_u_min: 0.0,
+                gain_u_max: 0.0,
+                gain_u_rms_dev: 0.0,
             });
             (l, comparison)
         }
@@ -632,9 +660,26 @@ pub fn eye_trajectory<M: Meridian>(
     };
     let points = eye_points(&pts, &l, &env, k);
     let stats = stats(&points);
-    let violations = violations(&points, spec);
+    let mut violations = violations(&points, spec);
     let turn = circuit.turn_angle();
     let closure_mm = closure(&points, turn);
+    if closure_mm > 1e-6 {
+        violations.push(Violation {
+            constraint: "cyclicity",
+            x: points.last().map_or(0.0, |p| p.x),
+            count: 1,
+            worst: closure_mm,
+        });
+    }
+    let comparison: Vec<Comparison> = comparison
+        .into_iter()
+        .map(|mut c| {
+            c.gain_u_min = stats.u_min - c.stats.u_min;
+            c.gain_u_max = c.stats.u_max - stats.u_max;
+            c.gain_u_rms_dev = c.stats.u_rms_dev - stats.u_rms_dev;
+            c
+        })
+        .collect();
     Ok(EyeTrajectory {
         mode: spec.mode,
         constraints_ok: violations.is_empty(),
@@ -1072,6 +1117,8 @@ fn stage_rms(
         let w = dx / total;
         prob.p_diag.push((n + i, 2.0 * w));
         prob.q[n + i] = -2.0 * w;
+        // Tie-break: among equally even pull speeds, the shortest free band.
+        prob.q[i] = 1e-9 * w;
     }
     common_rows(&mut prob, pts, lo, spec, l0, trust, k);
     let x = prob.solve("stage 3 (min rms of u - U)")?;

@@ -123,9 +123,19 @@ fn the_circuit_trajectory_closes() {
     let layer = vessel_layer(&v);
     let cyl = Cylinder::new(50.0, 400.0).unwrap();
     let tube = tube_layer(&cyl, 55.0);
+    // An isotensoid vessel: the passes leave the domes on their polar bosses.
+    let iso = formcam_geom::Vessel::new(
+        100.0,
+        300.0,
+        (formcam_geom::DomeShape::Isotensoid, 30.0),
+        (formcam_geom::DomeShape::Isotensoid, 30.0),
+    )
+    .unwrap();
+    let iso_layer = vessel_layer(&iso);
     for (m, layer) in [
         (&v as &dyn Meridian, &layer),
         (&cyl as &dyn Meridian, &tube),
+        (&iso as &dyn Meridian, &iso_layer),
     ] {
         for mode in [
             EyeMode::AxisParallel,
@@ -241,5 +251,54 @@ fn pull_speed_optimum_beats_the_geometric_trajectories() {
                     .collect::<Vec<_>>()
             );
         }
+    }
+}
+
+#[test]
+fn a_clearance_that_no_trajectory_keeps_is_an_error() {
+    let v = vessel(30.0, 30.0);
+    let layer = vessel_layer(&v);
+    for mode in [EyeMode::Equidistant, EyeMode::PullSpeed] {
+        let spec = EyeSpec {
+            mode,
+            clearance: 20.0,
+            l_max: 60.0,
+            nodes: 200,
+            samples: 201,
+            ..EyeSpec::default()
+        };
+        let e = eye_trajectory(&v, &layer, &spec).unwrap_err().to_string();
+        assert!(e.contains("l_max"), "{mode:?}: {e}");
+    }
+}
+
+#[test]
+fn the_optimum_keeps_the_clearance_near_a_small_opening() {
+    // A small opening: the free band beyond the dome's end dips towards the shaft.
+    let v = vessel(3.0, 3.0);
+    let spec = LayerSpec {
+        slippage: Slippage::Geodesic,
+        ends: Ends::Poles {
+            start: 3.0,
+            end: 3.0,
+        },
+        ..LayerSpec::default()
+    };
+    let layer = plan_layer(&v, &spec).unwrap();
+    for fixed in [false, true] {
+        let eye = EyeSpec {
+            mode: EyeMode::PullSpeed,
+            clearance: 20.0,
+            l_max: 2000.0,
+            bath_moves_with_eye: !fixed,
+            nodes: 400,
+            ..EyeSpec::default()
+        };
+        let t = eye_trajectory(&v, &layer, &eye).unwrap();
+        assert!(t.constraints_ok, "fixed bath {fixed}: {:?}", t.violations);
+        assert!(
+            t.points.iter().all(|p| p.margin >= -1e-6),
+            "fixed bath {fixed}"
+        );
     }
 }

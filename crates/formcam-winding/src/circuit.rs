@@ -53,6 +53,14 @@ impl PassPath {
         }
     }
 
+    /// State at `s` with a cursor for nearby successive calls.
+    pub fn state_near(&self, s: f64, cursor: &mut usize) -> [f64; 3] {
+        match self {
+            PassPath::Traced(t) => t.state_near(s, cursor),
+            PassPath::Points(_) => self.state_at(s),
+        }
+    }
+
     /// Length of the pass on the mandrel, mm.
     pub fn length(&self) -> f64 {
         match self {
@@ -241,6 +249,49 @@ impl<'a, M: Meridian> Circuit<'a, M> {
     /// Mandrel turn over the circuit (dwell included), rad.
     pub fn turn_angle(&self) -> f64 {
         2.0 * self.pass_turn + self.far.dv() + self.near.dv()
+    }
+
+    /// `n + 1` points evenly spaced in `x`, ends included: [`Circuit::at`] at each,
+    /// evaluated with a cursor over the pass (forwards on the outgoing pass,
+    /// backwards on the return pass).
+    pub fn points(&self, n: usize) -> Vec<CircuitPoint> {
+        let n = n.max(1);
+        let total = self.length();
+        let s1 = self.pass_len;
+        let t1 = s1 + self.far.length();
+        let s2 = t1 + s1;
+        let v_back = 2.0 * self.pass_turn + self.far.dv();
+        let mut cursor = 0usize;
+        (0..=n)
+            .map(|i| {
+                let x = total * i as f64 / n as f64;
+                if x <= s1 {
+                    let [z, v, a] = self.pass.state_near(x, &mut cursor);
+                    let j = self.m.eval(z);
+                    CircuitPoint {
+                        x,
+                        z,
+                        r: j.r,
+                        dr: j.dr,
+                        v,
+                        alpha: a,
+                    }
+                } else if x > t1 && x <= s2 {
+                    let [z, v, a] = self.pass.state_near(s1 - (x - t1), &mut cursor);
+                    let j = self.m.eval(z);
+                    CircuitPoint {
+                        x,
+                        z,
+                        r: j.r,
+                        dr: j.dr,
+                        v: v_back - v,
+                        alpha: PI - a,
+                    }
+                } else {
+                    self.at(x)
+                }
+            })
+            .collect()
     }
 
     /// The point at laid length `x` (clamped to the circuit).

@@ -540,10 +540,7 @@ pub fn eye_trajectory<M: Meridian>(
         EyeMode::PullSpeed => spec.nodes,
         _ => spec.samples - 1,
     };
-    let total = circuit.length();
-    let pts: Vec<CircuitPoint> = (0..=n)
-        .map(|i| circuit.at(total * i as f64 / n as f64))
-        .collect();
+    let pts: Vec<CircuitPoint> = circuit.points(n);
     let env = clearance_envelope(m, spec.clearance, spec.l_max);
     let l_min = match spec.mode {
         EyeMode::Equidistant => {

@@ -339,6 +339,25 @@ impl Trace {
         }
     }
 
+    /// State at `s` with a cursor `i` into the steps, for nearby successive calls
+    /// (forwards or backwards) without a search each time.
+    pub fn state_near(&self, s: f64, i: &mut usize) -> [f64; 3] {
+        let n = self.steps.len();
+        if n == 0 {
+            return self.last;
+        }
+        let mut k = (*i).min(n - 1);
+        while k + 1 < n && self.steps[k].t1() < s {
+            k += 1;
+        }
+        while k > 0 && self.steps[k].t0 > s {
+            k -= 1;
+        }
+        *i = k;
+        let st = &self.steps[k];
+        if s > st.t1() { self.last } else { st.at(s) }
+    }
+
     /// `n >= 2` samples evenly spaced in path length, ends included.
     pub fn sample<M: Meridian>(&self, m: &M, law: &MuLaw, n: usize) -> Vec<PathPoint> {
         let n = n.max(2);

@@ -302,3 +302,28 @@ fn the_optimum_keeps_the_clearance_near_a_small_opening() {
         );
     }
 }
+
+#[test]
+fn circuit_points_match_pointwise_evaluation() {
+    let v = vessel(30.0, 45.0);
+    let spec = LayerSpec {
+        slippage: Slippage::Auto,
+        ends: Ends::Poles {
+            start: 30.0,
+            end: 45.0,
+        },
+        ..LayerSpec::default()
+    };
+    let layer = plan_layer(&v, &spec).unwrap();
+    let c = Circuit::new(&v, &layer);
+    let pts = c.points(997);
+    assert_eq!(pts.len(), 998);
+    for p in &pts {
+        let q = c.at(p.x);
+        assert!(
+            (p.z - q.z).abs() < 1e-12
+                && (p.v - q.v).abs() < 1e-12
+                && (p.alpha - q.alpha).abs() < 1e-12
+        );
+    }
+}

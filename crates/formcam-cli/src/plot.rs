@@ -1,12 +1,18 @@
-//! SVG plots of a layer: the meridian with the Clairaut function, the winding
-//! angle and the layer thickness along `z`.
+//! SVG plots: stacked panels of line series (plotters, SVG backend).
 
 use formcam_geom::Meridian;
 use formcam_winding::Layer;
+use formcam_winding::eye::EyeTrajectory;
 use formcam_winding::minimax::bridging_limit;
 use plotters::prelude::*;
 
 use crate::CliError;
+
+/// One line: legend label (empty: no legend entry), points, colour.
+type Series = (&'static str, Vec<(f64, f64)>, RGBColor);
+
+/// One panel: x label, y label, its lines.
+type Panel = (&'static str, &'static str, Vec<Series>);
 
 fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
@@ -19,87 +25,30 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
-/// The layer as an SVG document (three panels stacked).
-pub fn layer_svg(title: &str, mandrel: &impl Meridian, layer: &Layer) -> Result<Vec<u8>, CliError> {
-    let err = |e: String| CliError(format!("path.svg: {e}"));
+/// Panels stacked in one SVG document; `file` names it in errors.
+fn panels_svg(file: &str, title: &str, panels: Vec<Panel>) -> Result<Vec<u8>, CliError> {
+    let err = |e: String| CliError(format!("{file}: {e}"));
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (900, 900)).into_drawing_area();
+        let root =
+            SVGBackend::with_string(&mut svg, (900, 300 * panels.len() as u32)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
         let root = root
             .titled(title, ("sans-serif", 20))
             .map_err(|e| err(e.to_string()))?;
-        let panels = root.split_evenly((3, 1));
-        let pts = &layer.points;
-        let (z0, z1) = range(pts.iter().map(|p| p.z));
-        type Series<'a> = (&'a str, Vec<(f64, f64)>, RGBColor);
-        let plots: [(&str, Vec<Series>); 3] = [
-            (
-                "radius, mm",
-                vec![
-                    (
-                        "meridian r",
-                        pts.iter().map(|p| (p.z, p.r)).collect(),
-                        BLACK,
-                    ),
-                    (
-                        "Clairaut C = r sin(alpha)",
-                        pts.iter().map(|p| (p.z, p.c)).collect(),
-                        BLUE,
-                    ),
-                ],
-            ),
-            (
-                "winding angle, deg",
-                vec![(
-                    "alpha",
-                    pts.iter().map(|p| (p.z, p.alpha.to_degrees())).collect(),
-                    RED,
-                )],
-            ),
-            (
-                "layer thickness, mm",
-                vec![(
-                    "two plies",
-                    pts.iter()
-                        .zip(&layer.thickness)
-                        .map(|(p, t)| (p.z, *t))
-                        .collect(),
-                    GREEN,
-                )],
-            ),
-        ];
-        // The bridging limit where the meridian is concave, one series per stretch.
-        let mut bridging: Vec<Vec<(f64, f64)>> = Vec::new();
-        let mut open = false;
-        for p in pts {
-            let cb = bridging_limit(&mandrel.eval(p.z));
-            if cb > 0.0 {
-                if !open {
-                    bridging.push(Vec::new());
-                }
-                if let Some(last) = bridging.last_mut() {
-                    last.push((p.z, cb));
-                }
-            }
-            open = cb > 0.0;
-        }
-        let mut plots = plots;
-        for (i, stretch) in bridging.into_iter().enumerate() {
-            let label = if i == 0 { "bridging limit C_b" } else { "" };
-            plots[0].1.push((label, stretch, MAGENTA));
-        }
-        for (area, (ylabel, series)) in panels.iter().zip(plots) {
+        let areas = root.split_evenly((panels.len(), 1));
+        for (area, (xlabel, ylabel, series)) in areas.iter().zip(panels) {
+            let (x0, x1) = range(series.iter().flat_map(|s| s.1.iter().map(|q| q.0)));
             let (y0, y1) = range(series.iter().flat_map(|s| s.1.iter().map(|q| q.1)));
             let mut chart = ChartBuilder::on(area)
                 .margin(10)
                 .x_label_area_size(35)
                 .y_label_area_size(60)
-                .build_cartesian_2d(z0..z1, y0..y1)
+                .build_cartesian_2d(x0..x1, y0..y1)
                 .map_err(|e| err(e.to_string()))?;
             chart
                 .configure_mesh()
-                .x_desc("z, mm")
+                .x_desc(xlabel)
                 .y_desc(ylabel)
                 .draw()
                 .map_err(|e| err(e.to_string()))?;
@@ -125,84 +74,107 @@ pub fn layer_svg(title: &str, mandrel: &impl Meridian, layer: &Layer) -> Result<
     Ok(svg.into_bytes())
 }
 
-/// The eye trajectory in the `Z x R` plane with the path, and `l(x)`, `u(x)`.
-pub fn eye_svg(title: &str, t: &formcam_winding::eye::EyeTrajectory) -> Result<Vec<u8>, CliError> {
-    let err = |e: String| CliError(format!("eye.svg: {e}"));
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (900, 900)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
-        let root = root
-            .titled(title, ("sans-serif", 20))
-            .map_err(|e| err(e.to_string()))?;
-        let panels = root.split_evenly((3, 1));
-        let pts = &t.points;
-        type Series<'a> = (&'a str, Vec<(f64, f64)>, RGBColor);
-        let plots: [(&str, &str, Vec<Series>); 3] = [
-            (
-                "Z, mm",
-                "R, mm",
-                vec![
-                    (
-                        "path (z, r)",
-                        pts.iter().map(|p| (p.z, p.r)).collect(),
-                        BLACK,
-                    ),
-                    (
-                        "eye (Z, R)",
-                        pts.iter().map(|p| (p.eye_z, p.eye_r)).collect(),
-                        RED,
-                    ),
-                ],
-            ),
-            ("x (laid band length), mm", "free length, mm", {
-                let mut v = vec![("l", pts.iter().map(|p| (p.x, p.l)).collect(), RED)];
-                if t.l_min.len() == pts.len() {
-                    let lm = pts.iter().zip(&t.l_min).map(|(p, l)| (p.x, *l)).collect();
-                    v.push(("l_min (clearance)", lm, BLUE));
-                }
-                v
-            }),
-            (
-                "x (laid band length), mm",
-                "pull speed u",
-                vec![(
-                    "u = d lambda / dx",
-                    pts.iter().map(|p| (p.x, p.u)).collect(),
-                    GREEN,
-                )],
-            ),
-        ];
-        for (area, (xlabel, ylabel, series)) in panels.iter().zip(plots) {
-            let (x0, x1) = range(series.iter().flat_map(|s| s.1.iter().map(|q| q.0)));
-            let (y0, y1) = range(series.iter().flat_map(|s| s.1.iter().map(|q| q.1)));
-            let mut chart = ChartBuilder::on(area)
-                .margin(10)
-                .x_label_area_size(35)
-                .y_label_area_size(60)
-                .build_cartesian_2d(x0..x1, y0..y1)
-                .map_err(|e| err(e.to_string()))?;
-            chart
-                .configure_mesh()
-                .x_desc(xlabel)
-                .y_desc(ylabel)
-                .draw()
-                .map_err(|e| err(e.to_string()))?;
-            for (label, data, color) in series {
-                chart
-                    .draw_series(LineSeries::new(data, color.stroke_width(2)))
-                    .map_err(|e| err(e.to_string()))?
-                    .label(label)
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
-            }
-            chart
-                .configure_series_labels()
-                .border_style(BLACK)
-                .background_style(WHITE.mix(0.8))
-                .draw()
-                .map_err(|e| err(e.to_string()))?;
+/// The layer: meridian with the Clairaut function and the bridging limit, the
+/// winding angle and the layer thickness along `z`.
+pub fn layer_svg(title: &str, mandrel: &impl Meridian, layer: &Layer) -> Result<Vec<u8>, CliError> {
+    let pts = &layer.points;
+    let mut radius: Vec<Series> = vec![
+        (
+            "meridian r",
+            pts.iter().map(|p| (p.z, p.r)).collect(),
+            BLACK,
+        ),
+        (
+            "Clairaut C = r sin(alpha)",
+            pts.iter().map(|p| (p.z, p.c)).collect(),
+            BLUE,
+        ),
+    ];
+    // The bridging limit where the meridian is concave, one series per stretch.
+    let mut stretch: Vec<(f64, f64)> = Vec::new();
+    for p in pts {
+        let cb = bridging_limit(&mandrel.eval(p.z));
+        if cb > 0.0 {
+            stretch.push((p.z, cb));
+        } else if !stretch.is_empty() {
+            let label = if radius.len() == 2 {
+                "bridging limit C_b"
+            } else {
+                ""
+            };
+            radius.push((label, std::mem::take(&mut stretch), MAGENTA));
         }
-        root.present().map_err(|e| err(e.to_string()))?;
     }
-    Ok(svg.into_bytes())
+    if !stretch.is_empty() {
+        let label = if radius.len() == 2 {
+            "bridging limit C_b"
+        } else {
+            ""
+        };
+        radius.push((label, stretch, MAGENTA));
+    }
+    let panels = vec![
+        ("z, mm", "radius, mm", radius),
+        (
+            "z, mm",
+            "winding angle, deg",
+            vec![(
+                "alpha",
+                pts.iter().map(|p| (p.z, p.alpha.to_degrees())).collect(),
+                RED,
+            )],
+        ),
+        (
+            "z, mm",
+            "layer thickness, mm",
+            vec![(
+                "two plies",
+                pts.iter()
+                    .zip(&layer.thickness)
+                    .map(|(p, t)| (p.z, *t))
+                    .collect(),
+                GREEN,
+            )],
+        ),
+    ];
+    panels_svg("path.svg", title, panels)
+}
+
+/// The eye trajectory in the `Z x R` plane with the path, and `l(x)`, `u(x)`.
+pub fn eye_svg(title: &str, t: &EyeTrajectory) -> Result<Vec<u8>, CliError> {
+    let pts = &t.points;
+    let mut lengths: Vec<Series> = vec![("l", pts.iter().map(|p| (p.x, p.l)).collect(), RED)];
+    if t.l_min.len() == pts.len() {
+        let lm = pts.iter().zip(&t.l_min).map(|(p, l)| (p.x, *l)).collect();
+        lengths.push(("l_min (clearance)", lm, BLUE));
+    }
+    let panels = vec![
+        (
+            "Z, mm",
+            "R, mm",
+            vec![
+                (
+                    "path (z, r)",
+                    pts.iter().map(|p| (p.z, p.r)).collect(),
+                    BLACK,
+                ),
+                (
+                    "eye (Z, R)",
+                    pts.iter().map(|p| (p.eye_z, p.eye_r)).collect(),
+                    RED,
+                ),
+            ],
+        ),
+        ("x (laid band length), mm", "free length, mm", lengths),
+        (
+            "x (laid band length), mm",
+            "pull speed u",
+            vec![(
+                "u = d lambda / dx",
+                pts.iter().map(|p| (p.x, p.u)).collect(),
+                GREEN,
+            )],
+        ),
+    ];
+    panels_svg("eye.svg", title, panels)
 }

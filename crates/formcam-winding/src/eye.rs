@@ -371,39 +371,15 @@ fn length_to_profile(p: &CircuitPoint, f: &Profile, guess: f64, l_hi: f64) -> Op
     if fb < 0.0 {
         return None;
     }
-    // Illinois on [a, b].
-    let mut side = 0;
-    for _ in 0..100 {
-        let c = (a * fb - b * fa) / (fb - fa);
-        let c = if c.is_finite() && c > a && c < b {
-            c
-        } else {
-            0.5 * (a + b)
-        };
-        let fc = g(c);
-        if fc.abs() < 1e-11 || b - a < 1e-12 {
-            return Some(c);
-        }
-        if fc > 0.0 {
-            b = c;
-            fb = fc;
-            if side == -1 {
-                fa *= 0.5;
-            }
-            side = -1;
-        } else {
-            a = c;
-            fa = fc;
-            if side == 1 {
-                fb *= 0.5;
-            }
-            side = 1;
-        }
-    }
-    Some(0.5 * (a + b))
+    Some(crate::ode::find_root_known(
+        g,
+        (a, fa),
+        (b, fb),
+        1e-12,
+        1e-11,
+    ))
 }
 
-/// Least free lengths (the clearance) at the given circuit points.
 /// Least free lengths that keep the clearance at the given circuit points.
 ///
 /// `first`: the first exit of the eye from the clearance zone along the free band

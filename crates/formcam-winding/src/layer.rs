@@ -527,19 +527,28 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
     let t_at = |r: f64, alpha: f64| {
         2.0 * spec.band_thickness * n * spec.band_width / (TAU * r * alpha.cos().max(1e-12))
     };
-    let r_turn = dense
-        .iter()
-        .map(|p| p.c)
-        .fold(f64::INFINITY, f64::min)
-        .max(1e-9);
-    let r_cap = (r_turn + spec.band_width).min(eq.r);
-    let cap = t_at(r_cap, (r_turn / r_cap).clamp(-1.0, 1.0).asin());
-    let thick = |p: &PathPoint| {
-        if !tube && p.r < r_cap {
-            t_at(p.r, p.alpha).min(cap)
-        } else {
-            t_at(p.r, p.alpha)
-        }
+    // The cap of each end: the thickness where the path first (from that end) is a
+    // band width above its turn radius, held constant towards the turn.
+    let full = |p: &PathPoint| t_at(p.r, p.alpha);
+    let cap_of = |mut it: Box<dyn Iterator<Item = &PathPoint> + '_>| {
+        let turn = it.next().map_or(0.0, |p| p.c);
+        let reach = (turn + spec.band_width).min(eq.r);
+        it.find(|p| p.r >= reach).map(|p| (p.z, full(p)))
+    };
+    let start_cap = if tube {
+        None
+    } else {
+        cap_of(Box::new(dense.iter()))
+    };
+    let end_cap = if tube {
+        None
+    } else {
+        cap_of(Box::new(dense.iter().rev()))
+    };
+    let thick = |p: &PathPoint| match (start_cap, end_cap) {
+        (Some((z, t)), _) if p.z < z => t,
+        (_, Some((z, t))) if p.z > z => t,
+        _ => full(p),
     };
     let thickness: Vec<f64> = points.iter().map(thick).collect();
     let thickness_max = dense.iter().map(thick).fold(0.0, f64::max);

@@ -136,11 +136,10 @@ impl Turnaround {
                 } else {
                     (PI - alpha, alpha)
                 };
-                // The excursion is short: treated as a cylinder of the end radius.
                 Turnaround::Sweep {
                     z,
                     radius: j.r,
-                    dr: 0.0,
+                    dr: j.dr,
                     alpha_in,
                     alpha_out,
                     length,
@@ -185,7 +184,10 @@ impl Turnaround {
     }
 
     /// `(z, r, dr, dv, alpha)` at `sigma` in `[0, length]` from its start.
-    fn at(&self, sigma: f64) -> (f64, f64, f64, f64, f64) {
+    /// On a sweep the point lies on the meridian's continuation beyond the end
+    /// (`r`, `r'` from `m`), so that it joins the passes exactly; `z` and `v` follow
+    /// from the end radius (the excursion is short).
+    fn at<M: Meridian>(&self, m: &M, sigma: f64) -> (f64, f64, f64, f64, f64) {
         match *self {
             Turnaround::Hoop { z, radius, dr, .. } => (z, radius, dr, sigma / radius, FRAC_PI_2),
             Turnaround::Sweep {
@@ -206,7 +208,13 @@ impl Turnaround {
                 // dz = cos(a)/q dsigma, dv = sin(a)/r dsigma, with dsigma = k da.
                 let zz = z + k * (a.sin() - alpha_in.sin()) / q;
                 let dv = k * (alpha_in.cos() - a.cos()) / radius;
-                (zz, radius, dr, dv, a)
+                let j = m.eval(zz);
+                let (r, slope) = if j.r.is_finite() && j.r > 0.0 {
+                    (j.r, j.dr)
+                } else {
+                    (radius, dr)
+                };
+                (zz, r, slope, dv, a)
             }
         }
     }
@@ -315,7 +323,7 @@ impl<'a, M: Meridian> Circuit<'a, M> {
             let [z, v, a] = self.pass.state_at(x);
             point(z, v, a)
         } else if x <= t1 {
-            let (z, r, dr, dv, a) = self.far.at(x - s1);
+            let (z, r, dr, dv, a) = self.far.at(self.m, x - s1);
             CircuitPoint {
                 x,
                 z,
@@ -329,7 +337,7 @@ impl<'a, M: Meridian> Circuit<'a, M> {
             let [z, v, a] = self.pass.state_at(sigma);
             point(z, 2.0 * self.pass_turn + self.far.dv() - v, PI - a)
         } else {
-            let (z, r, dr, dv, a) = self.near.at(x - s2);
+            let (z, r, dr, dv, a) = self.near.at(self.m, x - s2);
             let v0 = 2.0 * self.pass_turn + self.far.dv();
             CircuitPoint {
                 x,

@@ -859,8 +859,8 @@ impl Problem {
                 Err(WindingError::infeasible(
                     "eye.l_max",
                     format!(
-                        "{stage}: no free length l(x) keeps the clearance, stays under l_max and \
-                         never slackens the band (the LP is infeasible)"
+                        "{stage}: no free length l(x) keeps the clearance, stays under l_max, never \
+                         slackens the band and never turns the mandrel back (the LP is infeasible)"
                     ),
                 ))
             }
@@ -893,31 +893,41 @@ fn optimise(
     let lo: Vec<f64> = (0..n)
         .map(|i| l_min[i].max(l_min[if i == 0 { n } else { i }]))
         .collect();
-    // Start: a constant length when one fits, else the least lengths.
+    // Start: a constant length when one fits, else the least lengths; a fixed
+    // bath starts from the optimum of a moving one, which keeps every constraint,
+    // so each trust region around it holds a feasible point.
     let top = lo.iter().copied().fold(0.0, f64::max);
-    let mut l0: Vec<f64> = if top <= spec.l_max {
+    let mut l0: Vec<f64> = if k != 0.0 {
+        let mut start = optimise(pts, l_min, spec, 0.0)?;
+        start.truncate(n);
+        start
+    } else if top <= spec.l_max {
         vec![top; n]
     } else {
         lo.clone()
     };
-    let iterations = if k == 0.0 { 1 } else { 8 };
+    // k = 1 linearises R(l); both linearise the turn V(l) of the no-reverse rows.
+    let iterations = 8;
     let mut trust = 0.25 * spec.l_max;
     let mut best = l0.clone();
     let mut best_min = f64::NEG_INFINITY;
     for _ in 0..iterations {
         let lin = Linear::new(pts, &l0, k);
-        let (t, l) = stage_min(pts, &lo, spec, &lin, &l0, trust, k)?;
-        let _ = t;
+        let (_, l) = stage_min(pts, &lo, spec, &lin, &l0, trust, k)?;
         let exact = exact_u_min(pts, &l, k);
-        if exact > best_min + 1e-12 {
+        let forward = turns_forward(pts, &l);
+        if exact > best_min + 1e-12 || (k == 0.0 && forward) {
             let gain = exact - best_min;
-            best_min = exact;
+            best_min = best_min.max(exact);
             best = l.clone();
             l0 = l;
-            // Converged: the linearisation no longer moves the optimum.
-            if gain < 1e-6 {
+            // Converged: the linearisations no longer move the optimum.
+            if forward && (k == 0.0 || gain < 1e-6) {
                 break;
             }
+        } else if k == 0.0 {
+            // Only the turn is linearised: relinearise at the new solution.
+            l0 = l;
         } else {
             trust *= 0.5;
         }
@@ -988,7 +998,36 @@ fn common_rows(
         }
         // No slack: l_j - l_i + dx >= 0.
         prob.le.push((vec![(i, 1.0), (j, -1.0)], dx));
+        // No reverse rotation, linearised at l0: V_j(l_j) >= V_i(l_i), with
+        // dV/dl = r sin(alpha) / R^2 > 0.
+        let (vi, gi) = turn_and_slope(&pts[i], l0[i]);
+        let (vj, gj) = turn_and_slope(&pts[i + 1], l0[j]);
+        prob.le
+            .push((vec![(i, gi), (j, -gj)], vj - vi - gj * l0[j] + gi * l0[i]));
     }
+}
+
+/// The eye's turn `V` at free length `l` and its slope `dV/dl`.
+fn turn_and_slope(p: &CircuitPoint, l: f64) -> (f64, f64) {
+    let (_, r, v, _, _) = eye_at(p, l);
+    (
+        v,
+        if r > 0.0 {
+            p.r * p.alpha.sin() / (r * r)
+        } else {
+            0.0
+        },
+    )
+}
+
+/// Whether the mandrel never turns back along `l` (cyclic, `l[n] = l[0]`).
+fn turns_forward(pts: &[CircuitPoint], l: &[f64]) -> bool {
+    let n = l.len();
+    (0..n).all(|i| {
+        let (vi, _) = turn_and_slope(&pts[i], l[i]);
+        let (vj, _) = turn_and_slope(&pts[i + 1], l[(i + 1) % n]);
+        vj - vi >= -1e-9
+    })
 }
 
 /// `u_i = 1 + (D_i + e_i)/dx_i` with `D_i = c1_j l_j - c1_i l_i`: the coefficients of

@@ -327,3 +327,46 @@ fn circuit_points_match_pointwise_evaluation() {
         );
     }
 }
+
+#[test]
+fn the_optimum_never_turns_the_mandrel_back_and_closes_on_a_cone() {
+    // A shallow helix: keeping the pull speed even would turn the mandrel back
+    // unless the no-reverse-rotation rows hold it.
+    let cyl = Cylinder::new(50.0, 400.0).unwrap();
+    let layer = tube_layer(&cyl, 10.0);
+    let cone = formcam_geom::Cone::new(40.0, 70.0, 300.0).unwrap();
+    let cone_layer = tube_layer_on(&cone, 30.0);
+    for (m, layer) in [
+        (&cyl as &dyn Meridian, &layer),
+        (&cone as &dyn Meridian, &cone_layer),
+    ] {
+        for fixed in [false, true] {
+            let spec = EyeSpec {
+                mode: EyeMode::PullSpeed,
+                clearance: 15.0,
+                l_max: 900.0,
+                bath_moves_with_eye: !fixed,
+                nodes: 300,
+                ..EyeSpec::default()
+            };
+            let t = eye_trajectory(&m, layer, &spec).unwrap();
+            assert!(t.constraints_ok, "fixed bath {fixed}: {:?}", t.violations);
+            assert!(t.closure_mm < 1e-9, "closure {}", t.closure_mm);
+            for w in t.points.windows(2) {
+                assert!(w[1].eye_v >= w[0].eye_v - 1e-9);
+            }
+        }
+    }
+}
+
+fn tube_layer_on(m: &dyn Meridian, deg: f64) -> formcam_winding::Layer {
+    let spec = LayerSpec {
+        slippage: Slippage::Geodesic,
+        ends: Ends::Tube {
+            winding_angle: deg.to_radians(),
+        },
+        dwell_min: PI,
+        ..LayerSpec::default()
+    };
+    plan_layer(&m, &spec).unwrap()
+}

@@ -893,18 +893,21 @@ fn optimise(
     let lo: Vec<f64> = (0..n)
         .map(|i| l_min[i].max(l_min[if i == 0 { n } else { i }]))
         .collect();
-    // Start: a constant length when one fits, else the least lengths; a fixed
-    // bath starts from the optimum of a moving one, which keeps every constraint,
-    // so each trust region around it holds a feasible point.
+    // Start: a constant length when one fits, else the least lengths. A fixed bath
+    // needs a start that keeps every constraint (each trust region around it then
+    // holds a feasible point): the constant length if the mandrel never turns back
+    // with it, else the optimum of a moving bath.
     let top = lo.iter().copied().fold(0.0, f64::max);
-    let mut l0: Vec<f64> = if k != 0.0 {
-        let mut start = optimise(pts, l_min, spec, 0.0)?;
-        start.truncate(n);
-        start
-    } else if top <= spec.l_max {
-        vec![top; n]
-    } else {
-        lo.clone()
+    let constant = (top <= spec.l_max).then(|| vec![top; n]);
+    let mut l0: Vec<f64> = match constant {
+        Some(c) if k == 0.0 || turns_forward(pts, &c) => c,
+        _ if k != 0.0 => {
+            let mut start = optimise(pts, l_min, spec, 0.0)?;
+            start.truncate(n);
+            start
+        }
+        Some(c) => c,
+        None => lo.clone(),
     };
     // k = 1 linearises R(l); both linearise the turn V(l) of the no-reverse rows.
     let iterations = 8;
@@ -922,7 +925,7 @@ fn optimise(
             best = l.clone();
             l0 = l;
             // Converged: the linearisations no longer move the optimum.
-            if forward && (k == 0.0 || gain < 1e-6) {
+            if forward && (k == 0.0 || gain < 1e-4) {
                 break;
             }
         } else if k == 0.0 {
@@ -932,11 +935,23 @@ fn optimise(
             trust *= 0.5;
         }
     }
-    let lin = Linear::new(pts, &best, k);
-    let (t_star, _) = stage_min(pts, &lo, spec, &lin, &best, trust, k)?;
-    let (w_star, _) = stage_max(pts, &lo, spec, &lin, &best, trust, k, t_star)?;
-    let l = stage_rms(pts, &lo, spec, &lin, &best, trust, k, t_star, w_star)?;
-    let mut l = l;
+    // Stages 2 and 3 around the stage-1 optimum; the turn rows are relinearised
+    // at their solution until the exact check holds, else the stage-1 optimum
+    // (which keeps every constraint) stands.
+    let mut at = best.clone();
+    let mut out = None;
+    for _ in 0..4 {
+        let lin = Linear::new(pts, &at, k);
+        let (t_star, _) = stage_min(pts, &lo, spec, &lin, &at, trust, k)?;
+        let (w_star, _) = stage_max(pts, &lo, spec, &lin, &at, trust, k, t_star)?;
+        let l = stage_rms(pts, &lo, spec, &lin, &at, trust, k, t_star, w_star)?;
+        if turns_forward(pts, &l) {
+            out = Some(l);
+            break;
+        }
+        at = l;
+    }
+    let mut l = out.unwrap_or(best);
     l.push(l[0]);
     Ok(l)
 }

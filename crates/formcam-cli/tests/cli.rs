@@ -83,6 +83,11 @@ polar_opening = 30.0
 /// Runs a bad job; returns its one-line error after checking the exit code and
 /// that nothing was written.
 fn fails(name: &str, job: &str, extra: &[(&str, &str)]) -> String {
+    fails_in("path", name, job, extra)
+}
+
+/// As [`fails`] for `formcam wind <command>`.
+fn fails_in(command: &str, name: &str, job: &str, extra: &[(&str, &str)]) -> String {
     let dir = scratch(name);
     let path = dir.join("job.toml");
     std::fs::write(&path, job).unwrap();
@@ -91,7 +96,7 @@ fn fails(name: &str, job: &str, extra: &[(&str, &str)]) -> String {
     }
     let out = dir.join("out");
     let st = formcam()
-        .args(["wind", "path"])
+        .args(["wind", command])
         .arg(&path)
         .arg("-o")
         .arg(&out)
@@ -322,39 +327,16 @@ fn bad_eye_tables_fail_with_one_line_naming_the_field() {
         ),
     ];
     for (name, text, field) in cases {
-        let dir = scratch(name);
-        let path = dir.join("job.toml");
-        std::fs::write(&path, &text).unwrap();
-        let out = dir.join("out");
-        let st = formcam()
-            .args(["wind", "eye"])
-            .arg(&path)
-            .arg("-o")
-            .arg(&out)
-            .output()
-            .unwrap();
-        assert!(!st.status.success(), "{name}: should fail");
-        assert!(!out.exists(), "{name}: a failed run wrote output");
-        let err = String::from_utf8_lossy(&st.stderr).trim_end().to_string();
-        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        let err = fails_in("eye", name, &text, &[]);
         assert!(err.contains(field), "{name}: {field} not named in {err}");
     }
     // A curve that does not cover the winding zone.
-    let dir = scratch("eye-short-curve");
-    std::fs::write(dir.join("c.csv"), "Z,R\n100,200\n200,200\n").unwrap();
-    let path = dir.join("job.toml");
-    std::fs::write(
-        &path,
-        job("mode = \"curve\"\ncurve = \"c.csv\"\nl_max = 400.0\n"),
-    )
-    .unwrap();
-    let st = formcam()
-        .args(["wind", "eye"])
-        .arg(&path)
-        .arg("-o")
-        .arg(dir.join("out"))
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&st.stderr).to_string();
-    assert!(!st.status.success() && err.contains("eye.curve"), "{err}");
+    let text = job("mode = \"curve\"\ncurve = \"c.csv\"\nl_max = 400.0\n");
+    let err = fails_in(
+        "eye",
+        "eye-short-curve",
+        &text,
+        &[("c.csv", "Z,R\n100,200\n200,200\n")],
+    );
+    assert!(err.contains("eye.curve"), "{err}");
 }

@@ -596,7 +596,10 @@ pub fn eye_trajectory<M: Meridian>(
                     })
                     .collect()
             }
-            EyeMode::PullSpeed => unreachable_mode(),
+            EyeMode::PullSpeed => Err(WindingError::field(
+                "eye.mode",
+                "pull-speed is not a geometric mode",
+            )),
         }
     };
     let (l, comparison) = match spec.mode {
@@ -664,13 +667,6 @@ pub fn eye_trajectory<M: Meridian>(
         comparison,
         l_min,
     })
-}
-
-fn unreachable_mode() -> Result<Vec<f64>, WindingError> {
-    Err(WindingError::field(
-        "eye.mode",
-        "pull-speed is not a geometric mode",
-    ))
 }
 
 /// Eye points from free lengths (cyclic: the last interval's `u` repeats the first).
@@ -915,8 +911,7 @@ fn optimise(
     let mut best = l0.clone();
     let mut best_min = f64::NEG_INFINITY;
     for _ in 0..iterations {
-        let lin = Linear::new(pts, &l0, k);
-        let (_, l) = stage_min(pts, &lo, spec, &lin, &l0, trust, k)?;
+        let (_, l) = Stages::new(pts, &lo, spec, &l0, trust, k).min()?;
         let exact = exact_u_min(pts, &l, k);
         let forward = turns_forward(pts, &l);
         if exact > best_min + 1e-12 || (k == 0.0 && forward) {
@@ -941,10 +936,10 @@ fn optimise(
     let mut at = best.clone();
     let mut out = None;
     for _ in 0..4 {
-        let lin = Linear::new(pts, &at, k);
-        let (t_star, _) = stage_min(pts, &lo, spec, &lin, &at, trust, k)?;
-        let (w_star, _) = stage_max(pts, &lo, spec, &lin, &at, trust, k, t_star)?;
-        let l = stage_rms(pts, &lo, spec, &lin, &at, trust, k, t_star, w_star)?;
+        let stages = Stages::new(pts, &lo, spec, &at, trust, k);
+        let (t_star, _) = stages.min()?;
+        let (w_star, _) = stages.max(t_star)?;
+        let l = stages.rms(t_star, w_star)?;
         if turns_forward(pts, &l) {
             out = Some(l);
             break;
@@ -991,37 +986,6 @@ fn exact_u_min(pts: &[CircuitPoint], l: &[f64], k: f64) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-/// Rows common to every stage: bounds, trust region, no slack.
-fn common_rows(
-    prob: &mut Problem,
-    pts: &[CircuitPoint],
-    lo: &[f64],
-    spec: &EyeSpec,
-    l0: &[f64],
-    trust: f64,
-    k: f64,
-) {
-    let n = lo.len();
-    for i in 0..n {
-        let j = (i + 1) % n;
-        let dx = pts[i + 1].x - pts[i].x;
-        prob.le.push((vec![(i, -1.0)], -lo[i]));
-        prob.le.push((vec![(i, 1.0)], spec.l_max));
-        if k != 0.0 {
-            prob.le.push((vec![(i, 1.0)], l0[i] + trust));
-            prob.le.push((vec![(i, -1.0)], -(l0[i] - trust)));
-        }
-        // No slack: l_j - l_i + dx >= 0.
-        prob.le.push((vec![(i, 1.0), (j, -1.0)], dx));
-        // No reverse rotation, linearised at l0: V_j(l_j) >= V_i(l_i), with
-        // dV/dl = r sin(alpha) / R^2 > 0.
-        let (vi, gi) = turn_and_slope(&pts[i], l0[i]);
-        let (vj, gj) = turn_and_slope(&pts[i + 1], l0[j]);
-        prob.le
-            .push((vec![(i, gi), (j, -gj)], vj - vi - gj * l0[j] + gi * l0[i]));
-    }
-}
-
 /// The eye's turn `V` at free length `l` and its slope `dV/dl`.
 fn turn_and_slope(p: &CircuitPoint, l: f64) -> (f64, f64) {
     let (_, r, v, _, _) = eye_at(p, l);
@@ -1045,109 +1009,141 @@ fn turns_forward(pts: &[CircuitPoint], l: &[f64]) -> bool {
     })
 }
 
-/// `u_i = 1 + (D_i + e_i)/dx_i` with `D_i = c1_j l_j - c1_i l_i`: the coefficients of
-/// `D_i / dx_i` and the constant `1 + e_i / dx_i`.
-fn u_terms(pts: &[CircuitPoint], lin: &Linear, i: usize) -> (Vec<(usize, f64)>, f64) {
-    let n = lin.c1.len();
-    let j = (i + 1) % n;
-    let dx = pts[i + 1].x - pts[i].x;
-    (
-        vec![(j, lin.c1[j] / dx), (i, -lin.c1[i] / dx)],
-        1.0 + (lin.c0[j] - lin.c0[i]) / dx,
-    )
-}
-
-fn stage_min(
-    pts: &[CircuitPoint],
-    lo: &[f64],
-    spec: &EyeSpec,
-    lin: &Linear,
-    l0: &[f64],
+/// The three stages on the discretised `l(x)`, linearised at `l0` (the turn `V`,
+/// and `R` for a fixed bath), with what every stage shares.
+struct Stages<'a> {
+    pts: &'a [CircuitPoint],
+    lo: &'a [f64],
+    spec: &'a EyeSpec,
+    l0: &'a [f64],
+    lin: Linear,
     trust: f64,
     k: f64,
-) -> Result<(f64, Vec<f64>), WindingError> {
-    let n = lo.len();
-    let mut prob = Problem::new(n + 1);
-    prob.q[n] = -1.0;
-    common_rows(&mut prob, pts, lo, spec, l0, trust, k);
-    for i in 0..n {
-        // t <= u_i  ->  t - D_i/dx <= const
-        let (mut row, c) = u_terms(pts, lin, i);
-        for e in &mut row {
-            e.1 = -e.1;
+}
+
+impl<'a> Stages<'a> {
+    fn new(
+        pts: &'a [CircuitPoint],
+        lo: &'a [f64],
+        spec: &'a EyeSpec,
+        l0: &'a [f64],
+        trust: f64,
+        k: f64,
+    ) -> Self {
+        Self {
+            pts,
+            lo,
+            spec,
+            l0,
+            lin: Linear::new(pts, l0, k),
+            trust,
+            k,
         }
-        row.push((n, 1.0));
-        prob.le.push((row, c));
     }
-    let x = prob.solve("stage 1 (max min u)")?;
-    Ok((x[n], x[..n].to_vec()))
-}
 
-#[allow(clippy::too_many_arguments)]
-fn stage_max(
-    pts: &[CircuitPoint],
-    lo: &[f64],
-    spec: &EyeSpec,
-    lin: &Linear,
-    l0: &[f64],
-    trust: f64,
-    k: f64,
-    t_star: f64,
-) -> Result<(f64, Vec<f64>), WindingError> {
-    let n = lo.len();
-    let mut prob = Problem::new(n + 1);
-    prob.q[n] = 1.0;
-    common_rows(&mut prob, pts, lo, spec, l0, trust, k);
-    let t_lo = t_star - 1e-7 * (1.0 + t_star.abs());
-    for i in 0..n {
-        let (row, c) = u_terms(pts, lin, i);
-        // u_i <= w  ->  D_i/dx - w <= -c
-        let mut up = row.clone();
-        up.push((n, -1.0));
-        prob.le.push((up, -c));
-        // u_i >= t*  ->  -D_i/dx <= c - t*
-        let down: Vec<(usize, f64)> = row.iter().map(|&(j, v)| (j, -v)).collect();
-        prob.le.push((down, c - t_lo));
+    fn n(&self) -> usize {
+        self.lo.len()
     }
-    let x = prob.solve("stage 2 (min max u)")?;
-    Ok((x[n], x[..n].to_vec()))
-}
 
-#[allow(clippy::too_many_arguments)]
-fn stage_rms(
-    pts: &[CircuitPoint],
-    lo: &[f64],
-    spec: &EyeSpec,
-    lin: &Linear,
-    l0: &[f64],
-    trust: f64,
-    k: f64,
-    t_star: f64,
-    w_star: f64,
-) -> Result<Vec<f64>, WindingError> {
-    let n = lo.len();
-    // Variables: l_0..l_{n-1}, u_0..u_{n-1}.
-    let mut prob = Problem::new(2 * n);
-    let total = pts[n].x - pts[0].x;
-    let t_lo = t_star - 1e-7 * (1.0 + t_star.abs());
-    let w_hi = w_star + 1e-7 * (1.0 + w_star.abs());
-    for i in 0..n {
-        let dx = pts[i + 1].x - pts[i].x;
-        let (row, c) = u_terms(pts, lin, i);
-        // u_i - D_i/dx = c
-        let mut eq: Vec<(usize, f64)> = row.iter().map(|&(j, v)| (j, -v)).collect();
-        eq.push((n + i, 1.0));
-        prob.eq.push((eq, c));
-        prob.le.push((vec![(n + i, 1.0)], w_hi));
-        prob.le.push((vec![(n + i, -1.0)], -t_lo));
-        // (u_i - U)^2 dx / X with U = 1 (the mean of u over a closed cycle).
-        let w = dx / total;
-        prob.p_diag.push((n + i, 2.0 * w));
-        prob.q[n + i] = -2.0 * w;
-        // Tie-break: among equally even pull speeds, the shortest free band.
-        prob.q[i] = 1e-9 * w;
+    /// Rows common to every stage: bounds, trust region, no slack, no reverse rotation.
+    fn rows(&self, prob: &mut Problem) {
+        let (pts, l0, n) = (self.pts, self.l0, self.n());
+        for i in 0..n {
+            let j = (i + 1) % n;
+            let dx = pts[i + 1].x - pts[i].x;
+            prob.le.push((vec![(i, -1.0)], -self.lo[i]));
+            prob.le.push((vec![(i, 1.0)], self.spec.l_max));
+            if self.k != 0.0 {
+                prob.le.push((vec![(i, 1.0)], l0[i] + self.trust));
+                prob.le.push((vec![(i, -1.0)], -(l0[i] - self.trust)));
+            }
+            // No slack: l_j - l_i + dx >= 0.
+            prob.le.push((vec![(i, 1.0), (j, -1.0)], dx));
+            // No reverse rotation, linearised at l0: V_j(l_j) >= V_i(l_i), with
+            // dV/dl = r sin(alpha) / R^2 > 0.
+            let (vi, gi) = turn_and_slope(&pts[i], l0[i]);
+            let (vj, gj) = turn_and_slope(&pts[i + 1], l0[j]);
+            prob.le
+                .push((vec![(i, gi), (j, -gj)], vj - vi - gj * l0[j] + gi * l0[i]));
+        }
     }
-    common_rows(&mut prob, pts, lo, spec, l0, trust, k);
-    let x = prob.solve("stage 3 (min rms of u - U)")?;
-    Ok(x[..n].to_vec())
+
+    /// `u_i = 1 + (D_i + e_i)/dx_i` with `D_i = c1_j l_j - c1_i l_i`: the
+    /// coefficients of `D_i / dx_i` and the constant `1 + e_i / dx_i`.
+    fn u_terms(&self, i: usize) -> (Vec<(usize, f64)>, f64) {
+        let (c1, c0) = (&self.lin.c1, &self.lin.c0);
+        let j = (i + 1) % c1.len();
+        let dx = self.pts[i + 1].x - self.pts[i].x;
+        (
+            vec![(j, c1[j] / dx), (i, -c1[i] / dx)],
+            1.0 + (c0[j] - c0[i]) / dx,
+        )
+    }
+
+    /// Stage 1: the largest lower bound `t` of `u`, and its `l`.
+    fn min(&self) -> Result<(f64, Vec<f64>), WindingError> {
+        let n = self.n();
+        let mut prob = Problem::new(n + 1);
+        prob.q[n] = -1.0;
+        self.rows(&mut prob);
+        for i in 0..n {
+            // t <= u_i  ->  t - D_i/dx <= const
+            let (row, c) = self.u_terms(i);
+            let mut row: Vec<(usize, f64)> = row.iter().map(|&(j, v)| (j, -v)).collect();
+            row.push((n, 1.0));
+            prob.le.push((row, c));
+        }
+        let x = prob.solve("stage 1 (max min u)")?;
+        Ok((x[n], x[..n].to_vec()))
+    }
+
+    /// Stage 2: the smallest upper bound `w` of `u` keeping `u >= t*`, and its `l`.
+    fn max(&self, t_star: f64) -> Result<(f64, Vec<f64>), WindingError> {
+        let n = self.n();
+        let mut prob = Problem::new(n + 1);
+        prob.q[n] = 1.0;
+        self.rows(&mut prob);
+        let t_lo = t_star - 1e-7 * (1.0 + t_star.abs());
+        for i in 0..n {
+            let (row, c) = self.u_terms(i);
+            // u_i <= w  ->  D_i/dx - w <= -c
+            let mut up = row.clone();
+            up.push((n, -1.0));
+            prob.le.push((up, -c));
+            // u_i >= t*  ->  -D_i/dx <= c - t*
+            let down: Vec<(usize, f64)> = row.iter().map(|&(j, v)| (j, -v)).collect();
+            prob.le.push((down, c - t_lo));
+        }
+        let x = prob.solve("stage 2 (min max u)")?;
+        Ok((x[n], x[..n].to_vec()))
+    }
+
+    /// Stage 3: the least RMS of `u - U` within `[t*, w*]`.
+    fn rms(&self, t_star: f64, w_star: f64) -> Result<Vec<f64>, WindingError> {
+        let (pts, n) = (self.pts, self.n());
+        // Variables: l_0..l_{n-1}, u_0..u_{n-1}.
+        let mut prob = Problem::new(2 * n);
+        let total = pts[n].x - pts[0].x;
+        let t_lo = t_star - 1e-7 * (1.0 + t_star.abs());
+        let w_hi = w_star + 1e-7 * (1.0 + w_star.abs());
+        for i in 0..n {
+            let dx = pts[i + 1].x - pts[i].x;
+            let (row, c) = self.u_terms(i);
+            // u_i - D_i/dx = c
+            let mut eq: Vec<(usize, f64)> = row.iter().map(|&(j, v)| (j, -v)).collect();
+            eq.push((n + i, 1.0));
+            prob.eq.push((eq, c));
+            prob.le.push((vec![(n + i, 1.0)], w_hi));
+            prob.le.push((vec![(n + i, -1.0)], -t_lo));
+            // (u_i - U)^2 dx / X with U = 1 (the mean of u over a closed cycle).
+            let w = dx / total;
+            prob.p_diag.push((n + i, 2.0 * w));
+            prob.q[n + i] = -2.0 * w;
+            // Tie-break: among equally even pull speeds, the shortest free band.
+            prob.q[i] = 1e-9 * w;
+        }
+        self.rows(&mut prob);
+        let x = prob.solve("stage 3 (min rms of u - U)")?;
+        Ok(x[..n].to_vec())
+    }
 }

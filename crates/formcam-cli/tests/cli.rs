@@ -20,21 +20,30 @@ fn examples() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
 }
 
-#[test]
-fn wind_path_writes_csv_and_summary() {
-    let out = scratch("good").join("out");
-    let st = formcam()
-        .args(["wind", "path"])
-        .arg(examples().join("vessel-geodesic.toml"))
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
+/// Runs `formcam ARGS -o OUT` (a trailing `*.toml` argument is an example job)
+/// and checks that it succeeds; returns `OUT`.
+fn succeeds(name: &str, args: &[&str]) -> PathBuf {
+    let out = scratch(name).join("out");
+    let mut cmd = formcam();
+    for a in args {
+        if a.ends_with(".toml") {
+            cmd.arg(examples().join(a));
+        } else {
+            cmd.arg(a);
+        }
+    }
+    let st = cmd.arg("-o").arg(&out).output().unwrap();
     assert!(
         st.status.success(),
-        "{}",
+        "{name}: {}",
         String::from_utf8_lossy(&st.stderr)
     );
+    out
+}
+
+#[test]
+fn wind_path_writes_csv_and_summary() {
+    let out = succeeds("good", &["wind", "path", "vessel-geodesic.toml"]);
     let csv = std::fs::read_to_string(out.join("path.csv")).unwrap();
     let mut lines = csv.lines();
     let header = lines.next().unwrap();
@@ -212,20 +221,8 @@ fn bad_profiles_and_concave_meridians_fail_cleanly() {
 
 #[test]
 fn demo_runs_every_example() {
-    let out = scratch("demo").join("out");
-    let st = formcam()
-        .arg("demo")
-        .arg("--examples")
-        .arg(examples())
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(
-        st.status.success(),
-        "{}",
-        String::from_utf8_lossy(&st.stderr)
-    );
+    let examples_dir = examples().to_string_lossy().into_owned();
+    let out = succeeds("demo", &["demo", "--examples", &examples_dir]);
     let jobs = std::fs::read_dir(examples())
         .unwrap()
         .filter(|e| {
@@ -254,19 +251,7 @@ fn demo_runs_every_example() {
 
 #[test]
 fn wind_eye_writes_the_trajectory_and_its_summary() {
-    let out = scratch("eye").join("out");
-    let st = formcam()
-        .args(["wind", "eye"])
-        .arg(examples().join("vessel-eye-pull-speed.toml"))
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(
-        st.status.success(),
-        "{}",
-        String::from_utf8_lossy(&st.stderr)
-    );
+    let out = succeeds("eye", &["wind", "eye", "vessel-eye-pull-speed.toml"]);
     let csv = std::fs::read_to_string(out.join("eye.csv")).unwrap();
     let header = csv.lines().next().unwrap();
     assert!(

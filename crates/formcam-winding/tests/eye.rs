@@ -11,7 +11,7 @@ use formcam_geom::{Cylinder, Meridian};
 use formcam_winding::eye::{EyeMode, EyeSpec, eye_trajectory};
 use formcam_winding::{Circuit, Ends, LayerSpec, Slippage, plan_layer};
 
-fn tube_layer(cyl: &Cylinder, deg: f64) -> formcam_winding::Layer {
+fn tube_layer(m: &dyn Meridian, deg: f64) -> formcam_winding::Layer {
     let spec = LayerSpec {
         slippage: Slippage::Geodesic,
         ends: Ends::Tube {
@@ -20,7 +20,7 @@ fn tube_layer(cyl: &Cylinder, deg: f64) -> formcam_winding::Layer {
         dwell_min: PI,
         ..LayerSpec::default()
     };
-    plan_layer(cyl, &spec).unwrap()
+    plan_layer(&m, &spec).unwrap()
 }
 
 fn vessel_layer(v: &formcam_geom::Vessel) -> formcam_winding::Layer {
@@ -335,7 +335,7 @@ fn the_optimum_never_turns_the_mandrel_back_and_closes_on_a_cone() {
     let cyl = Cylinder::new(50.0, 400.0).unwrap();
     let layer = tube_layer(&cyl, 10.0);
     let cone = formcam_geom::Cone::new(40.0, 70.0, 300.0).unwrap();
-    let cone_layer = tube_layer_on(&cone, 30.0);
+    let cone_layer = tube_layer(&cone, 30.0);
     for (m, layer) in [
         (&cyl as &dyn Meridian, &layer),
         (&cone as &dyn Meridian, &cone_layer),
@@ -357,16 +357,4 @@ fn the_optimum_never_turns_the_mandrel_back_and_closes_on_a_cone() {
             }
         }
     }
-}
-
-fn tube_layer_on(m: &dyn Meridian, deg: f64) -> formcam_winding::Layer {
-    let spec = LayerSpec {
-        slippage: Slippage::Geodesic,
-        ends: Ends::Tube {
-            winding_angle: deg.to_radians(),
-        },
-        dwell_min: PI,
-        ..LayerSpec::default()
-    };
-    plan_layer(&m, &spec).unwrap()
 }

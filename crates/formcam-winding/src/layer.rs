@@ -399,7 +399,7 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
             };
         }
         end = tr.end;
-        pass_path = PassPath::Traced(tr.clone());
+        pass_path = PassPath::Traced(tr);
         let (_, bad) = bridging_margin(m, &dense);
         if let Some(zbad) = bad {
             if spec.slippage == Slippage::Auto {

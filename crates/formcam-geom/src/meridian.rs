@@ -15,7 +15,10 @@ pub struct Jet {
 /// evaluated a little outside `[z_start, z_end]` (integrators probe there while
 /// locating events); they then continue their analytic form where it exists and
 /// return NaN where it does not.
-pub trait Meridian {
+///
+/// Meridians are plain data, shared between threads (`Sync`) by the algorithms
+/// that split their work.
+pub trait Meridian: Sync {
     /// The meridian's domain `(z_start, z_end)`, `z_start < z_end`.
     fn z_range(&self) -> (f64, f64);
 

@@ -263,6 +263,15 @@ impl<'a, M: Meridian> Circuit<'a, M> {
     /// evaluated with a cursor over the pass (forwards on the outgoing pass,
     /// backwards on the return pass).
     pub fn points(&self, n: usize) -> Vec<CircuitPoint> {
+        self.samples(n, 0..n.max(1) + 1).collect()
+    }
+
+    /// The points `range` of [`Circuit::points`]`(n)`, one at a time.
+    pub fn samples(
+        &self,
+        n: usize,
+        range: std::ops::Range<usize>,
+    ) -> impl Iterator<Item = CircuitPoint> + '_ {
         let n = n.max(1);
         let total = self.length();
         let s1 = self.pass_len;
@@ -270,36 +279,28 @@ impl<'a, M: Meridian> Circuit<'a, M> {
         let s2 = t1 + s1;
         let v_back = 2.0 * self.pass_turn + self.far.dv();
         let mut cursor = 0usize;
-        (0..=n)
-            .map(|i| {
-                let x = total * i as f64 / n as f64;
-                if x <= s1 {
-                    let [z, v, a] = self.pass.state_near(x, &mut cursor);
-                    let j = self.m.eval(z);
-                    CircuitPoint {
-                        x,
-                        z,
-                        r: j.r,
-                        dr: j.dr,
-                        v,
-                        alpha: a,
-                    }
-                } else if x > t1 && x <= s2 {
-                    let [z, v, a] = self.pass.state_near(s1 - (x - t1), &mut cursor);
-                    let j = self.m.eval(z);
-                    CircuitPoint {
-                        x,
-                        z,
-                        r: j.r,
-                        dr: j.dr,
-                        v: v_back - v,
-                        alpha: PI - a,
-                    }
-                } else {
-                    self.at(x)
+        range.map(move |i| {
+            let x = total * i as f64 / n as f64;
+            let on_pass = |state: [f64; 3], back: bool| {
+                let [z, v, a] = state;
+                let j = self.m.eval(z);
+                CircuitPoint {
+                    x,
+                    z,
+                    r: j.r,
+                    dr: j.dr,
+                    v: if back { v_back - v } else { v },
+                    alpha: if back { PI - a } else { a },
                 }
-            })
-            .collect()
+            };
+            if x <= s1 {
+                on_pass(self.pass.state_near(x, &mut cursor), false)
+            } else if x > t1 && x <= s2 {
+                on_pass(self.pass.state_near(s1 - (x - t1), &mut cursor), true)
+            } else {
+                self.at(x)
+            }
+        })
     }
 
     /// The point at laid length `x` (clamped to the circuit).

@@ -179,62 +179,218 @@ pub struct EyeTrajectory {
     pub l_min: Vec<f64>,
 }
 
+/// The free band leaving a circuit point: its unit direction split into the
+/// axial (`ca`), radial (`ra`) and circumferential (`sa`) parts of the point's
+/// frame (eqs. 8–9), computed once per point.
+#[derive(Debug, Clone, Copy)]
+struct Band {
+    p: CircuitPoint,
+    ca: f64,
+    ra: f64,
+    sa: f64,
+}
+
+impl Band {
+    fn new(p: &CircuitPoint) -> Self {
+        let q = (1.0 + p.dr * p.dr).sqrt();
+        let (sa, cos) = p.alpha.sin_cos();
+        let ca = cos / q;
+        Self {
+            p: *p,
+            ca,
+            ra: p.dr * ca,
+            sa,
+        }
+    }
+
+    /// Eye `Z` and `R` at free length `l`.
+    fn eye_zr(&self, l: f64) -> (f64, f64) {
+        let d = self.p.r + l * self.ra;
+        let w = l * self.sa;
+        (self.p.z + l * self.ca, (d * d + w * w).sqrt())
+    }
+
+    /// Eye `Z`, `R` and `dR/dl` at free length `l`.
+    fn zr(&self, l: f64) -> (f64, f64, f64) {
+        let d = self.p.r + l * self.ra;
+        let w = l * self.sa;
+        let rr = (d * d + w * w).sqrt();
+        let dr_dl = if rr > 0.0 {
+            (d * self.ra + w * self.sa) / rr
+        } else {
+            0.0
+        };
+        (self.p.z + l * self.ca, rr, dr_dl)
+    }
+
+    /// Eye `V` at free length `l`.
+    fn v(&self, l: f64) -> f64 {
+        let (w, d) = (l * self.sa, self.p.r + l * self.ra);
+        // w >= 0; the plain arctangent is cheaper where the quadrant is known.
+        self.p.v + if d > 0.0 { (w / d).atan() } else { w.atan2(d) }
+    }
+
+    /// Free length that puts the eye at radius `radius`, if any.
+    fn length_to_radius(&self, radius: f64) -> Option<f64> {
+        let aa = self.ra * self.ra + self.sa * self.sa;
+        let b = self.p.r * self.ra;
+        let c = self.p.r * self.p.r - radius * radius;
+        let disc = b * b - aa * c;
+        if aa <= 1e-300 || disc < 0.0 {
+            return None;
+        }
+        let l = (-b + disc.sqrt()) / aa;
+        (l >= 0.0).then_some(l)
+    }
+
+    /// The first free length at which the eye reaches the curve `R = f(Z)` (from
+    /// inside), searched near `guess` (the root of the previous point). `None`
+    /// when it is not reached before `l_hi`.
+    /// `start`: where Newton starts (the guess, or a prediction from the roots
+    /// of the previous points).
+    fn length_to_profile(&self, f: &Profile, guess: f64, start: f64, l_hi: f64) -> Option<f64> {
+        // g(l) = R(l) - f(Z(l)) and its slope.
+        let g = |l: f64| {
+            let (z, r, dr) = self.zr(l);
+            let (fz, slope) = f.at(z);
+            (r - fz, dr - slope * self.ca)
+        };
+        // Neighbouring points have nearly the same root: Newton from the guess,
+        // kept when it settles close by on a crossing outwards with the band still
+        // inside the zone a little before it (as the bracketing below demands).
+        let near = (0.02 * guess).max(0.05);
+        if guess > near {
+            let mut l = start;
+            for _ in 0..6 {
+                let (gv, dg) = g(l);
+                if dg.is_nan() || dg <= 0.0 {
+                    break;
+                }
+                let step = gv / dg;
+                l -= step;
+                if l.is_nan() || (l - guess).abs() >= near {
+                    break;
+                }
+                if step.abs() <= 1e-8 * (1.0 + l) {
+                    let (z, r) = self.eye_zr(l - near);
+                    if r < f.at(z).0 {
+                        return Some(l);
+                    }
+                    break;
+                }
+            }
+        }
+        // Bracket the first sign change. Neighbouring points have nearly the same
+        // root: start just below the guess with a small step when the curve is
+        // still ahead there; otherwise march from 0 with a coarse step.
+        let mut below = None;
+        let mut step = (0.25 * guess).max(1.0);
+        if guess > 0.0 {
+            let gl = guess - near;
+            if gl > 0.0 {
+                let fg = g(gl).0;
+                if fg < 0.0 {
+                    below = Some(gl);
+                    step = near;
+                }
+            }
+        }
+        let mut a = match below {
+            Some(a) => a,
+            None if g(0.0).0 >= 0.0 => return Some(0.0),
+            None => 0.0,
+        };
+        let (mut l, (mut gv, mut dg)) = loop {
+            if a >= l_hi {
+                return None;
+            }
+            let b = (a + step).min(l_hi);
+            let gb = g(b);
+            if gb.0 >= 0.0 {
+                break (b, gb);
+            }
+            a = b;
+        };
+        // Safeguarded Newton in [a, b]: f is linear between the profile's nodes, so
+        // Newton lands on the root of the local piece; bisection when a step
+        // leaves the bracket.
+        let mut b = l;
+        for _ in 0..100 {
+            if gv == 0.0 {
+                return Some(l);
+            }
+            if gv < 0.0 {
+                a = l;
+            } else {
+                b = l;
+            }
+            let newton = l - gv / dg;
+            let next = if dg.is_finite() && dg != 0.0 && newton > a && newton < b {
+                newton
+            } else {
+                0.5 * (a + b)
+            };
+            if (next - l).abs() <= 1e-13 * (1.0 + l) || b - a <= 1e-13 * (1.0 + b) {
+                return Some(next);
+            }
+            l = next;
+            (gv, dg) = g(l);
+        }
+        Some(b)
+    }
+}
+
 /// Eye position for free length `l`: `(Z, R, V, dZ/dl, dR/dl)` (eq. 10).
 pub fn eye_at(p: &CircuitPoint, l: f64) -> (f64, f64, f64, f64, f64) {
-    let q = (1.0 + p.dr * p.dr).sqrt();
-    let ca = p.alpha.cos() / q;
-    let a = p.dr * ca;
-    let sa = p.alpha.sin();
-    let d = p.r + l * a;
-    let w = l * sa;
-    let rr = (d * d + w * w).sqrt();
-    let dr_dl = if rr > 0.0 { (d * a + w * sa) / rr } else { 0.0 };
-    (p.z + l * ca, rr, p.v + w.atan2(d), ca, dr_dl)
+    let b = Band::new(p);
+    let (z, r, dr_dl) = b.zr(l);
+    (z, r, b.v(l), b.ca, dr_dl)
 }
 
 /// Free length that puts the eye at radius `radius` (axis-parallel), if any.
 pub fn axis_parallel_length(p: &CircuitPoint, radius: f64) -> Option<f64> {
-    let q = (1.0 + p.dr * p.dr).sqrt();
-    let a = p.dr * p.alpha.cos() / q;
-    let sa = p.alpha.sin();
-    let aa = a * a + sa * sa;
-    let b = p.r * a;
-    let c = p.r * p.r - radius * radius;
-    let disc = b * b - aa * c;
-    if aa <= 1e-300 || disc < 0.0 {
-        return None;
-    }
-    let l = (-b + disc.sqrt()) / aa;
-    (l >= 0.0).then_some(l)
+    Band::new(p).length_to_radius(radius)
 }
 
 /// A curve `R = f(Z)` sampled on a uniform grid, linear between nodes, constant beyond.
 #[derive(Debug, Clone)]
 struct Profile {
     z0: f64,
-    dz: f64,
+    inv_dz: f64,
     vals: Vec<f64>,
 }
 
 impl Profile {
+    /// `f(z)` and its slope.
     fn at(&self, z: f64) -> (f64, f64) {
         let n = self.vals.len();
-        let t = (z - self.z0) / self.dz;
+        let t = (z - self.z0) * self.inv_dz;
         if t.is_nan() || t <= 0.0 {
             return (self.vals[0], 0.0);
         }
-        let i = t.floor() as usize;
+        let i = t as usize;
         if i + 1 >= n {
             return (self.vals[n - 1], 0.0);
         }
         let f = t - i as f64;
-        let slope = (self.vals[i + 1] - self.vals[i]) / self.dz;
-        (self.vals[i] + f * (self.vals[i + 1] - self.vals[i]), slope)
+        let (a, b) = (self.vals[i], self.vals[i + 1]);
+        (a + f * (b - a), (b - a) * self.inv_dz)
+    }
+
+    fn top(&self) -> f64 {
+        self.vals.iter().copied().fold(f64::NEG_INFINITY, f64::max)
     }
 }
 
 /// The clearance zone's outer boundary: the upper envelope of discs of radius
 /// `c` centred on the meridian and on the shaft beyond its ends (radius of the end).
+///
+/// The envelope of the discs along a smooth stretch is traced by their offset
+/// points `P + c n` (the upper normal `n`), folds included (where the meridian is
+/// concave tighter than `c` the offset curve crosses itself and the maximum keeps
+/// the outer branches); whole discs are laid at the ends and at breakpoints. The
+/// offset curve is sampled every `c/50` of its own length, so its chords sag by
+/// at most `c/20000`.
 fn clearance_envelope<M: Meridian>(m: &M, c: f64, reach: f64) -> Profile {
     let (za, zb) = m.z_range();
     let (ra, rb) = (m.r(za), m.r(zb));
@@ -244,9 +400,10 @@ fn clearance_envelope<M: Meridian>(m: &M, c: f64, reach: f64) -> Profile {
     // corner, and linear interpolation across it errs by about slope * cell / 2.
     let cells = (((hi - lo) / (c / 400.0)).ceil() as usize).clamp(2048, 1 << 18);
     let dz = (hi - lo) / cells as f64;
+    let cell_z = |i: usize| lo + dz * i as f64;
     let mut vals: Vec<f64> = (0..=cells)
         .map(|i| {
-            let z = lo + dz * i as f64;
+            let z = cell_z(i);
             if z <= za {
                 ra + c
             } else if z >= zb {
@@ -256,25 +413,65 @@ fn clearance_envelope<M: Meridian>(m: &M, c: f64, reach: f64) -> Profile {
             }
         })
         .collect();
-    // Meridian samples every c/50 (at least 1024): between two the disc envelope
-    // sags by at most (c/100)^2 / (2c) = c/20000.
-    let samples = 1024usize
-        .max(((zb - za) / (c / 50.0)).ceil() as usize)
-        .min(1 << 16);
-    for k in 0..=samples {
-        let zk = za + (zb - za) * k as f64 / samples as f64;
-        let rk = m.r(zk);
-        let i0 = (((zk - c) - lo) / dz).floor().max(0.0) as usize;
-        let i1 = ((((zk + c) - lo) / dz).ceil() as usize).min(cells);
-        for (i, val) in vals.iter_mut().enumerate().take(i1 + 1).skip(i0) {
-            let d = lo + dz * i as f64 - zk;
-            let h = c * c - d * d;
-            if h >= 0.0 {
-                *val = val.max(rk + h.sqrt());
-            }
+    // Cells with z in [z0, z1].
+    let span = |z0: f64, z1: f64| {
+        let i0 = ((z0 - lo) / dz).ceil().max(0.0) as usize;
+        let i1 = (((z1 - lo) / dz).floor().max(0.0) as usize).min(cells);
+        i0..i1 + 1
+    };
+    let disc = |vals: &mut [f64], zc: f64, rc: f64| {
+        for i in span(zc - c, zc + c) {
+            let d = cell_z(i) - zc;
+            vals[i] = vals[i].max(rc + (c * c - d * d).max(0.0).sqrt());
+        }
+    };
+    disc(&mut vals, za, ra);
+    disc(&mut vals, zb, rb);
+    for z in m.breakpoints() {
+        if z > za && z < zb {
+            disc(&mut vals, z, m.r(z));
         }
     }
-    Profile { z0: lo, dz, vals }
+    // The offset curve, stretch by stretch between breakpoints.
+    let h = c / 50.0;
+    let min_step = (zb - za) / f64::from(1u32 << 20);
+    let mut stops: Vec<f64> = m
+        .breakpoints()
+        .into_iter()
+        .filter(|&z| z > za && z < zb)
+        .collect();
+    stops.push(zb);
+    let offset = |z: f64| {
+        let j = m.eval(z);
+        let q = (1.0 + j.dr * j.dr).sqrt();
+        let kappa = j.d2r.abs() / (q * q * q);
+        ((z - c * j.dr / q, j.r + c / q), q, kappa)
+    };
+    let mut z = za;
+    for stop in stops {
+        let (mut p, mut q, mut kappa) = offset(z);
+        while z < stop {
+            // The offset curve is (1 + c kappa) times longer than the meridian.
+            let step = (h / (q * (1.0 + c * kappa))).max(min_step);
+            z = (z + step).min(stop);
+            let (pn, qn, kn) = offset(z);
+            let ((z0, r0), (z1, r1)) = if pn.0 >= p.0 { (p, pn) } else { (pn, p) };
+            for i in span(z0, z1) {
+                let t = if z1 > z0 {
+                    (cell_z(i) - z0) / (z1 - z0)
+                } else {
+                    0.0
+                };
+                vals[i] = vals[i].max(r0 + t * (r1 - r0));
+            }
+            (p, q, kappa) = (pn, qn, kn);
+        }
+    }
+    Profile {
+        z0: lo,
+        inv_dz: 1.0 / dz,
+        vals,
+    }
 }
 
 /// The user curve as a profile (fine resampling of the polyline).
@@ -322,62 +519,55 @@ fn curve_profile(curve: &[(f64, f64)]) -> Result<Profile, WindingError> {
             a.1 + t * (b.1 - a.1)
         })
         .collect();
-    Ok(Profile { z0, dz, vals })
+    Ok(Profile {
+        z0,
+        inv_dz: 1.0 / dz,
+        vals,
+    })
 }
 
-/// The first free length at which the eye reaches the curve `R = f(Z)` (from inside),
-/// starting the search near `guess`. `None` when it is not reached before `l_hi`.
-fn length_to_profile(p: &CircuitPoint, f: &Profile, guess: f64, l_hi: f64) -> Option<f64> {
-    // Only Z and R are needed here (no arctangent for V).
-    let q = (1.0 + p.dr * p.dr).sqrt();
-    let ca = p.alpha.cos() / q;
-    let ra = p.dr * ca;
-    let sa = p.alpha.sin();
-    let g = |l: f64| {
-        let (d, w) = (p.r + l * ra, l * sa);
-        (d * d + w * w).sqrt() - f.at(p.z + l * ca).0
-    };
-    let f0 = g(0.0);
-    if f0 >= 0.0 {
-        return Some(0.0);
-    }
-    // Bracket the first sign change. Neighbouring points have nearly the same
-    // root: start just below the guess with a small step when the curve is still
-    // ahead there; otherwise march from 0 with a coarse step.
-    let (mut a, mut fa) = (0.0, f0);
-    let mut step = (0.25 * guess).max(1.0);
-    if guess > 0.0 {
-        let near = (0.02 * guess).max(0.05);
-        let gl = guess - near;
-        if gl > 0.0 {
-            let fg = g(gl);
-            if fg < 0.0 {
-                (a, fa) = (gl, fg);
-                step = near;
-            }
+/// Where the free band first leaves the clearance zone, point after point (each
+/// search starts from the previous point's root).
+#[derive(Clone)]
+struct FirstExit<'a> {
+    env: &'a Profile,
+    clearance: f64,
+    l_hi: f64,
+    /// The roots at the two previous points.
+    last: (f64, f64),
+}
+
+impl<'a> FirstExit<'a> {
+    fn new(env: &'a Profile, spec: &EyeSpec) -> Self {
+        Self {
+            env,
+            clearance: spec.clearance,
+            l_hi: 4.0 * spec.l_max + 20.0 * env.top(),
+            last: (0.0, 0.0),
         }
     }
-    let mut b = a;
-    let mut fb = fa;
-    while b < l_hi {
-        b = (a + step).min(l_hi);
-        fb = g(b);
-        if fb >= 0.0 {
-            break;
-        }
-        a = b;
-        fa = fb;
+
+    fn at(&mut self, b: &Band) -> Result<f64, WindingError> {
+        // Points are evenly spaced: the next root is about the linear extrapolation.
+        let (l1, l2) = self.last;
+        let start = if l1 > 0.0 && l2 > 0.0 {
+            2.0 * l1 - l2
+        } else {
+            l1
+        };
+        let l = b.length_to_profile(self.env, l1, start, self.l_hi).ok_or_else(|| {
+            WindingError::infeasible(
+                "eye.clearance",
+                format!(
+                    "no eye position on the free band keeps {} mm from the mandrel at x = {:.3} mm \
+                     (z = {:.3} mm)",
+                    self.clearance, b.p.x, b.p.z
+                ),
+            )
+        })?;
+        self.last = (l, l1);
+        Ok(l)
     }
-    if fb < 0.0 {
-        return None;
-    }
-    Some(crate::ode::find_root_known(
-        g,
-        (a, fa),
-        (b, fb),
-        1e-12,
-        1e-11,
-    ))
 }
 
 /// Least free lengths that keep the clearance at the given circuit points.
@@ -393,46 +583,37 @@ fn least_lengths(
     spec: &EyeSpec,
     first: bool,
 ) -> Result<Vec<f64>, WindingError> {
-    let top = env.vals.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let l_hi = 4.0 * spec.l_max + 20.0 * top;
-    let mut out = Vec::with_capacity(pts.len());
-    let mut guess = 0.0;
-    for p in pts {
-        let missing = || {
-            WindingError::infeasible(
-                "eye.clearance",
-                format!(
-                    "no eye position on the free band keeps {} mm from the mandrel at x = {:.3} mm \
-                     (z = {:.3} mm)",
-                    spec.clearance, p.x, p.z
-                ),
-            )
-        };
-        let mut l = length_to_profile(p, env, guess, l_hi).ok_or_else(missing)?;
-        guess = l;
-        if !first {
-            l = last_exit(p, env, l, l_hi, top, spec.clearance).ok_or_else(missing)?;
-        }
-        out.push(l);
-    }
-    Ok(out)
+    let mut exit = FirstExit::new(env, spec);
+    let top = env.top();
+    pts.iter()
+        .map(|p| {
+            let b = Band::new(p);
+            let l = exit.at(&b)?;
+            if first {
+                return Ok(l);
+            }
+            last_exit(&b, env, l, exit.l_hi, top, spec.clearance).ok_or_else(|| {
+                WindingError::infeasible(
+                    "eye.clearance",
+                    format!(
+                        "the free band at x = {:.3} mm (z = {:.3} mm) stays within {} mm of the \
+                         mandrel",
+                        p.x, p.z, spec.clearance
+                    ),
+                )
+            })
+        })
+        .collect()
 }
 
 /// From a first exit `l0`, the last exit of the eye from the clearance zone: march
 /// along the free band until the eye is above the zone's highest point and rising.
-fn last_exit(
-    p: &CircuitPoint,
-    env: &Profile,
-    l0: f64,
-    l_hi: f64,
-    top: f64,
-    clearance: f64,
-) -> Option<f64> {
+fn last_exit(b: &Band, env: &Profile, l0: f64, l_hi: f64, top: f64, clearance: f64) -> Option<f64> {
     // A dip into the zone is at least as long as the clearance is wide near its
     // deepest point; an eighth of it is a safe stride.
     let step = clearance / 8.0;
     let margin = |l: f64| {
-        let (z, r, _, _, dr) = eye_at(p, l);
+        let (z, r, dr) = b.zr(l);
         (r - env.at(z).0, r, dr)
     };
     let mut last = l0;
@@ -443,12 +624,16 @@ fn last_exit(
         if g >= -1e-9 {
             if inside {
                 // Refine the exit between l - step and l.
-                let (mut a, mut b) = (l - step, l);
+                let (mut a, mut c) = (l - step, l);
                 for _ in 0..60 {
-                    let c = 0.5 * (a + b);
-                    if margin(c).0 >= 0.0 { b = c } else { a = c }
+                    let mid = 0.5 * (a + c);
+                    if margin(mid).0 >= 0.0 {
+                        c = mid
+                    } else {
+                        a = mid
+                    }
                 }
-                last = b;
+                last = c;
                 inside = false;
             }
             if r >= top && dr >= 0.0 {
@@ -503,6 +688,200 @@ fn check_spec<M: Meridian>(m: &M, spec: &EyeSpec) -> Result<(), WindingError> {
     Ok(())
 }
 
+/// The free length of a geometric mode, point after point along the circuit.
+#[derive(Clone)]
+enum Geometric<'a> {
+    AxisParallel(f64),
+    Equidistant(FirstExit<'a>, f64),
+    Curve {
+        prof: &'a Profile,
+        span: (f64, f64),
+        guess: f64,
+        l_hi: f64,
+    },
+}
+
+impl<'a> Geometric<'a> {
+    /// `curve`: the user curve's profile (curve mode).
+    fn new(
+        mode: EyeMode,
+        spec: &EyeSpec,
+        env: &'a Profile,
+        curve: Option<&'a Profile>,
+    ) -> Result<Self, WindingError> {
+        Ok(match (mode, curve) {
+            (EyeMode::AxisParallel, _) => Geometric::AxisParallel(spec.radius.unwrap_or(0.0)),
+            (EyeMode::Equidistant, _) => {
+                Geometric::Equidistant(FirstExit::new(env, spec), spec.l_max)
+            }
+            (EyeMode::Curve, Some(prof)) => Geometric::Curve {
+                prof,
+                span: (
+                    spec.curve.first().map_or(0.0, |p| p.0),
+                    spec.curve.last().map_or(0.0, |p| p.0),
+                ),
+                guess: 0.0,
+                l_hi: 4.0 * spec.l_max + 20.0 * prof.top().max(0.0),
+            },
+            (EyeMode::Curve, None) => {
+                return Err(WindingError::field(
+                    "eye.curve",
+                    "missing: a file of Z,R points",
+                ));
+            }
+            (EyeMode::PullSpeed, _) => {
+                return Err(WindingError::field(
+                    "eye.mode",
+                    "pull-speed is not a geometric mode",
+                ));
+            }
+        })
+    }
+
+    fn at(&mut self, b: &Band) -> Result<f64, WindingError> {
+        let p = &b.p;
+        match self {
+            Geometric::AxisParallel(radius) => b.length_to_radius(*radius).ok_or_else(|| {
+                WindingError::infeasible(
+                    "eye.radius",
+                    format!(
+                        "the free band at x = {:.3} mm never reaches R = {radius} mm",
+                        p.x
+                    ),
+                )
+            }),
+            Geometric::Equidistant(exit, l_max) => {
+                let l = exit.at(b)?;
+                if l > *l_max {
+                    return Err(WindingError::infeasible(
+                        "eye.clearance",
+                        format!(
+                            "keeping {} mm from the mandrel needs a free length of {l:.3} mm at x = \
+                             {:.3} mm (z = {:.3} mm), more than l_max = {l_max} mm",
+                            exit.clearance, p.x, p.z
+                        ),
+                    ));
+                }
+                Ok(l)
+            }
+            Geometric::Curve {
+                prof,
+                span: (c0, c1),
+                guess,
+                l_hi,
+            } => {
+                if prof.at(p.z).0 <= p.r && p.z >= *c0 && p.z <= *c1 {
+                    return Err(WindingError::field(
+                        "eye.curve",
+                        format!("lies inside the mandrel at Z = {:.3} mm", p.z),
+                    ));
+                }
+                let l = b
+                    .length_to_profile(prof, *guess, *guess, *l_hi)
+                    .ok_or_else(|| {
+                        WindingError::field(
+                            "eye.curve",
+                            format!("the free band at x = {:.3} mm never meets the curve", p.x),
+                        )
+                    })?;
+                let ez = b.zr(l).0;
+                if ez < *c0 - 1e-9 || ez > *c1 + 1e-9 {
+                    return Err(WindingError::field(
+                        "eye.curve",
+                        format!(
+                            "does not cover the winding zone: the eye needs Z = {ez:.3} mm, the \
+                             curve spans [{c0:.3}, {c1:.3}] mm"
+                        ),
+                    ));
+                }
+                *guess = l;
+                Ok(l)
+            }
+        }
+    }
+}
+
+/// Points per thread below which a geometric trajectory is built on one thread.
+const POINTS_PER_THREAD: usize = 20_000;
+
+/// A geometric trajectory over the `n + 1` circuit samples. Long circuits are cut
+/// into contiguous runs, one per thread; each run is built in chunks (sample,
+/// solve, evaluate: each a loop of independent points), then checked, and the
+/// runs' checks are joined in order.
+fn geometric_points<M: Meridian>(
+    circuit: &Circuit<'_, M>,
+    n: usize,
+    length: &Geometric<'_>,
+    env: &Profile,
+    spec: &EyeSpec,
+    k: f64,
+) -> Result<(Vec<EyePoint>, Checks), WindingError> {
+    let total = n + 1;
+    let threads = std::thread::available_parallelism()
+        .map_or(1, usize::from)
+        .min(total / POINTS_PER_THREAD)
+        .clamp(1, 16);
+    let run = |range: std::ops::Range<usize>| -> Result<(Vec<EyePoint>, Checks), WindingError> {
+        const CHUNK: usize = 1024;
+        let mut out = Vec::with_capacity(range.len());
+        let mut checks = Checks::new();
+        let mut length = length.clone();
+        let mut samples = circuit.samples(n, range);
+        let mut bands = Vec::with_capacity(CHUNK);
+        let mut ls = Vec::with_capacity(CHUNK);
+        loop {
+            bands.clear();
+            bands.extend(samples.by_ref().take(CHUNK).map(|p| Band::new(&p)));
+            if bands.is_empty() {
+                break;
+            }
+            ls.clear();
+            for b in &bands {
+                ls.push(length.at(b)?);
+            }
+            let from = out.len();
+            out.extend(bands.iter().zip(&ls).map(|(b, &l)| eye_point(b, l, env, k)));
+            checks.scan(&mut out, from, spec);
+        }
+        Ok((out, checks))
+    };
+    let per = total.div_ceil(threads);
+    let runs: Vec<Result<(Vec<EyePoint>, Checks), WindingError>> = if threads == 1 {
+        vec![run(0..total)]
+    } else {
+        std::thread::scope(|s| {
+            let handles: Vec<_> = (0..threads)
+                .map(|t| {
+                    let run = &run;
+                    s.spawn(move || run(t * per..((t + 1) * per).min(total)))
+                })
+                .collect();
+            handles
+                .into_iter()
+                .map(|h| {
+                    h.join().unwrap_or_else(|_| {
+                        Err(WindingError::infeasible("eye", "a worker thread failed"))
+                    })
+                })
+                .collect()
+        })
+    };
+    let mut runs = runs.into_iter();
+    let (mut points, mut checks) = match runs.next() {
+        Some(r) => r?,
+        None => (Vec::new(), Checks::new()),
+    };
+    for r in runs {
+        let (next, c) = r?;
+        if let (Some(last), Some(first)) = (points.last_mut(), next.first()) {
+            checks.interval(last, first);
+        }
+        checks.join(c);
+        points.extend(next);
+    }
+    Ok((points, checks))
+}
+
 /// Builds the eye trajectory of `layer` (planned on `m`) as `spec` asks.
 pub fn eye_trajectory<M: Meridian>(
     m: &M,
@@ -512,141 +891,54 @@ pub fn eye_trajectory<M: Meridian>(
     check_spec(m, spec)?;
     let circuit = Circuit::new(m, layer);
     let k = if spec.bath_moves_with_eye { 0.0 } else { 1.0 };
-    let n = match spec.mode {
-        EyeMode::PullSpeed => spec.nodes,
-        _ => spec.samples - 1,
-    };
-    let pts: Vec<CircuitPoint> = circuit.points(n);
     let env = clearance_envelope(m, spec.clearance, spec.l_max);
-    let l_min = match spec.mode {
-        EyeMode::Equidistant => {
-            let l = least_lengths(&env, &pts, spec, true)?;
-            if let Some((i, li)) = l.iter().enumerate().find(|(_, li)| **li > spec.l_max) {
-                return Err(WindingError::infeasible(
-                    "eye.clearance",
-                    format!(
-                        "keeping {} mm from the mandrel needs a free length of {li:.3} mm at x = {:.3} mm \
-                         (z = {:.3} mm), more than l_max = {} mm",
-                        spec.clearance, pts[i].x, pts[i].z, spec.l_max
-                    ),
-                ));
+    let curve = match spec.mode {
+        EyeMode::Curve => Some(curve_profile(&spec.curve)?),
+        _ => None,
+    };
+    let (mut points, checks, comparison, l_min) = if spec.mode == EyeMode::PullSpeed {
+        let pts: Vec<CircuitPoint> = circuit.points(spec.nodes);
+        let l_min = least_lengths(&env, &pts, spec, false)?;
+        let l = optimise(&pts, &l_min, spec, k)?;
+        // The geometric trajectories on the same nodes.
+        let mut comparison = Vec::new();
+        for mode in [EyeMode::AxisParallel, EyeMode::Equidistant] {
+            if mode == EyeMode::AxisParallel && spec.radius.is_none() {
+                continue;
             }
-            l
-        }
-        EyeMode::PullSpeed => least_lengths(&env, &pts, spec, false)?,
-        _ => Vec::new(),
-    };
-    // The equidistant trajectory: the first exit from the clearance zone.
-    let l_equidistant = || -> Result<Vec<f64>, WindingError> {
-        match spec.mode {
-            EyeMode::Equidistant => Ok(l_min.clone()),
-            _ => least_lengths(&env, &pts, spec, true),
-        }
-    };
-    let geometric = |mode: EyeMode| -> Result<Vec<f64>, WindingError> {
-        match mode {
-            EyeMode::AxisParallel => {
-                let radius = spec.radius.unwrap_or(0.0);
+            let mut g = Geometric::new(mode, spec, &env, None)?;
+            let lg = match (
+                mode,
                 pts.iter()
-                    .map(|p| {
-                        axis_parallel_length(p, radius).ok_or_else(|| {
-                            WindingError::infeasible(
-                                "eye.radius",
-                                format!(
-                                    "the free band at x = {:.3} mm never reaches R = {radius} mm",
-                                    p.x
-                                ),
-                            )
-                        })
-                    })
-                    .collect()
-            }
-            EyeMode::Equidistant => l_equidistant(),
-            EyeMode::Curve => {
-                let prof = curve_profile(&spec.curve)?;
-                let (c0, c1) = (spec.curve[0].0, spec.curve[spec.curve.len() - 1].0);
-                let mut guess = 0.0;
-                let l_hi = 4.0 * spec.l_max + 20.0 * prof.vals.iter().copied().fold(0.0, f64::max);
-                pts.iter()
-                    .map(|p| {
-                        if prof.at(p.z).0 <= p.r && p.z >= c0 && p.z <= c1 {
-                            return Err(WindingError::field(
-                                "eye.curve",
-                                format!("lies inside the mandrel at Z = {:.3} mm", p.z),
-                            ));
-                        }
-                        let l = length_to_profile(p, &prof, guess, l_hi).ok_or_else(|| {
-                            WindingError::field(
-                                "eye.curve",
-                                format!("the free band at x = {:.3} mm never meets the curve", p.x),
-                            )
-                        })?;
-                        let (ez, _, _, _, _) = eye_at(p, l);
-                        if ez < c0 - 1e-9 || ez > c1 + 1e-9 {
-                            return Err(WindingError::field(
-                                "eye.curve",
-                                format!(
-                                    "does not cover the winding zone: the eye needs Z = {ez:.3} mm, the \
-                                     curve spans [{c0:.3}, {c1:.3}] mm"
-                                ),
-                            ));
-                        }
-                        guess = l;
-                        Ok(l)
-                    })
-                    .collect()
-            }
-            EyeMode::PullSpeed => Err(WindingError::field(
-                "eye.mode",
-                "pull-speed is not a geometric mode",
-            )),
-        }
-    };
-    let (l, comparison) = match spec.mode {
-        EyeMode::PullSpeed => {
-            let l = optimise(&pts, &l_min, spec, k)?;
-            let mut comparison = Vec::new();
-            if spec.radius.is_some()
-                && let Ok(lap) = geometric(EyeMode::AxisParallel)
-            {
-                {
-                    let (st, ok) = evaluate(&pts, &lap, &env, spec, k);
-                    comparison.push(Comparison {
-                        mode: EyeMode::AxisParallel,
-                        stats: st,
-                        constraints_ok: ok,
-                        gain_u_min: 0.0,
-                        gain_u_max: 0.0,
-                        gain_u_rms_dev: 0.0,
-                    });
-                }
-            }
-            let (st, ok) = evaluate(&pts, &l_equidistant()?, &env, spec, k);
+                    .map(|p| g.at(&Band::new(p)))
+                    .collect::<Result<Vec<f64>, _>>(),
+            ) {
+                (_, Ok(lg)) => lg,
+                // The eye's line may not reach every band: no comparison then.
+                (EyeMode::AxisParallel, Err(_)) => continue,
+                (_, Err(e)) => return Err(e),
+            };
+            let (_, c) = eye_points(&pts, &lg, &env, spec, k);
             comparison.push(Comparison {
-                mode: EyeMode::Equidistant,
-                stats: st,
-                constraints_ok: ok,
+                mode,
+                stats: c.stats(),
+                constraints_ok: c.broken.iter().all(Option::is_none),
                 gain_u_min: 0.0,
                 gain_u_max: 0.0,
                 gain_u_rms_dev: 0.0,
             });
-            (l, comparison)
         }
-        mode => (geometric(mode)?, Vec::new()),
+        let (points, checks) = eye_points(&pts, &l, &env, spec, k);
+        (points, checks, comparison, l_min)
+    } else {
+        let length = Geometric::new(spec.mode, spec, &env, curve.as_ref())?;
+        let (points, checks) =
+            geometric_points(&circuit, spec.samples - 1, &length, &env, spec, k)?;
+        (points, checks, Vec::new(), Vec::new())
     };
-    let points = eye_points(&pts, &l, &env, k);
-    let stats = stats(&points);
-    let mut violations = violations(&points, spec);
     let turn = circuit.turn_angle();
     let closure_mm = closure(&points, turn);
-    if closure_mm > 1e-6 {
-        violations.push(Violation {
-            constraint: "cyclicity",
-            x: points.last().map_or(0.0, |p| p.x),
-            count: 1,
-            worst: closure_mm,
-        });
-    }
+    let (stats, violations) = checks.close(&mut points, closure_mm);
     let comparison: Vec<Comparison> = comparison
         .into_iter()
         .map(|mut c| {
@@ -669,123 +961,226 @@ pub fn eye_trajectory<M: Meridian>(
     })
 }
 
-/// Eye points from free lengths (cyclic: the last interval's `u` repeats the first).
-fn eye_points(pts: &[CircuitPoint], l: &[f64], env: &Profile, k: f64) -> Vec<EyePoint> {
-    let mut out: Vec<EyePoint> = pts
-        .iter()
-        .zip(l)
-        .map(|(p, &l)| {
-            let (ez, er, ev, _, _) = eye_at(p, l);
-            EyePoint {
-                x: p.x,
-                z: p.z,
-                r: p.r,
-                v: p.v,
-                alpha: p.alpha,
-                l,
-                margin: er - env.at(ez).0,
-                eye_z: ez,
-                eye_r: er,
-                eye_v: ev,
-                lambda: l + p.x - k * er,
-                u: 0.0,
-            }
-        })
-        .collect();
-    let n = out.len();
-    for i in 0..n.saturating_sub(1) {
-        let dx = out[i + 1].x - out[i].x;
-        out[i].u = if dx > 0.0 {
-            (out[i + 1].lambda - out[i].lambda) / dx
-        } else {
-            1.0
-        };
+impl EyePoint {
+    /// The point of the path itself (free length 0, nothing computed yet).
+    fn at(p: &CircuitPoint) -> Self {
+        Self {
+            x: p.x,
+            z: p.z,
+            r: p.r,
+            v: p.v,
+            alpha: p.alpha,
+            l: 0.0,
+            margin: 0.0,
+            eye_z: p.z,
+            eye_r: p.r,
+            eye_v: p.v,
+            lambda: p.x,
+            u: 0.0,
+        }
     }
-    if n >= 2 {
-        out[n - 1].u = out[0].u;
-    }
-    out
 }
 
-/// Pull-speed statistics and whether all constraints hold, for free lengths `l`.
-fn evaluate(
+/// The eye point of free length `l` on the band `b` (its `u` still unknown).
+fn eye_point(b: &Band, l: f64, env: &Profile, k: f64) -> EyePoint {
+    let (ez, er) = b.eye_zr(l);
+    EyePoint {
+        l,
+        margin: er - env.at(ez).0,
+        eye_z: ez,
+        eye_r: er,
+        eye_v: b.v(l),
+        lambda: l + b.p.x - k * er,
+        ..EyePoint::at(&b.p)
+    }
+}
+
+/// Eye points of free lengths `l` at `pts`, with their checks.
+fn eye_points(
     pts: &[CircuitPoint],
     l: &[f64],
     env: &Profile,
     spec: &EyeSpec,
     k: f64,
-) -> (PullStats, bool) {
-    let e = eye_points(pts, l, env, k);
-    (stats(&e), violations(&e, spec).is_empty())
+) -> (Vec<EyePoint>, Checks) {
+    let mut e: Vec<EyePoint> = pts
+        .iter()
+        .zip(l)
+        .map(|(p, &l)| eye_point(&Band::new(p), l, env, k))
+        .collect();
+    let c = Checks::of_run(&mut e, spec);
+    (e, c)
 }
 
-fn stats(e: &[EyePoint]) -> PullStats {
-    let n = e.len().saturating_sub(1);
-    let total = e.last().map_or(0.0, |p| p.x) - e.first().map_or(0.0, |p| p.x);
-    let (mut lo, mut hi, mut sum) = (f64::INFINITY, f64::NEG_INFINITY, 0.0);
-    for i in 0..n {
-        let dx = e[i + 1].x - e[i].x;
-        lo = lo.min(e[i].u);
-        hi = hi.max(e[i].u);
-        sum += e[i].u * dx;
-    }
-    let mean = if total > 0.0 { sum / total } else { 0.0 };
-    let var: f64 = (0..n)
-        .map(|i| (e[i].u - mean).powi(2) * (e[i + 1].x - e[i].x))
-        .sum();
-    PullStats {
-        u_min: lo,
-        u_max: hi,
-        u_mean: mean,
-        u_rms_dev: if total > 0.0 {
-            (var / total).sqrt()
-        } else {
-            0.0
-        },
-    }
+/// The constraints, in the order of [`Checks`]' slots.
+const CONSTRAINTS: [&str; 5] = [
+    "cyclicity",
+    "clearance",
+    "l_max",
+    "slack",
+    "reverse-rotation",
+];
+const CLEARANCE: usize = 1;
+const L_MAX: usize = 2;
+const SLACK: usize = 3;
+const REVERSE: usize = 4;
+
+/// The pull speed and the constraints over a run of consecutive eye points:
+/// what can be summed run by run and joined.
+#[derive(Debug, Clone)]
+struct Checks {
+    u_min: f64,
+    u_max: f64,
+    /// Sums over the intervals: length, `(u - 1) dx`, `(u - 1)^2 dx` (the mean
+    /// pull speed of a closed cycle is 1).
+    sums: (f64, f64, f64),
+    /// Per constraint: the first `x` where it fails, how often, the worst excess.
+    broken: [Option<(f64, usize, f64)>; 5],
 }
 
-/// The constraints of the spec, summarised per kind.
-fn violations(e: &[EyePoint], spec: &EyeSpec) -> Vec<Violation> {
-    let tol = 1e-6;
-    let mut out: Vec<Violation> = Vec::new();
-    let mut note = |name: &'static str, x: f64, excess: f64| {
-        if let Some(v) = out.iter_mut().find(|v| v.constraint == name) {
-            v.count += 1;
-            v.worst = v.worst.max(excess);
+impl Checks {
+    /// Sets `u` on every interval of `e` and checks its points and intervals.
+    fn of_run(e: &mut [EyePoint], spec: &EyeSpec) -> Self {
+        let mut c = Self::new();
+        c.scan(e, 0, spec);
+        c
+    }
+
+    fn new() -> Self {
+        Self {
+            u_min: f64::INFINITY,
+            u_max: f64::NEG_INFINITY,
+            sums: (0.0, 0.0, 0.0),
+            broken: [None; 5],
+        }
+    }
+
+    /// Checks the points of `e` from `from` on, and the intervals that end there.
+    fn scan(&mut self, e: &mut [EyePoint], from: usize, spec: &EyeSpec) {
+        for i in from..e.len() {
+            self.point(&e[i], spec);
+            if i > 0 {
+                let next = e[i];
+                self.interval(&mut e[i - 1], &next);
+            }
+        }
+    }
+
+    fn note(&mut self, kind: usize, x: f64, count: usize, excess: f64) {
+        let slot = &mut self.broken[kind];
+        *slot = Some(match *slot {
+            Some((x0, n, worst)) => (x0.min(x), n + count, worst.max(excess)),
+            None => (x, count, excess),
+        });
+    }
+
+    fn point(&mut self, e: &EyePoint, spec: &EyeSpec) {
+        if e.margin < -1e-6 * (1.0 + spec.clearance) {
+            self.note(CLEARANCE, e.x, 1, -e.margin);
+        }
+        if e.l > spec.l_max + 1e-6 {
+            self.note(L_MAX, e.x, 1, e.l - spec.l_max);
+        }
+    }
+
+    /// The interval from `a` to the next point `b`: sets `a.u`.
+    fn interval(&mut self, a: &mut EyePoint, b: &EyePoint) {
+        let dx = b.x - a.x;
+        a.u = if dx > 0.0 {
+            (b.lambda - a.lambda) / dx
         } else {
-            out.push(Violation {
-                constraint: name,
-                x,
-                count: 1,
-                worst: excess,
-            });
+            1.0
+        };
+        self.u_min = self.u_min.min(a.u);
+        self.u_max = self.u_max.max(a.u);
+        let d = a.u - 1.0;
+        self.sums.0 += dx;
+        self.sums.1 += d * dx;
+        self.sums.2 += d * d * dx;
+        let slack = (b.l - a.l) + dx;
+        if slack < -1e-6 {
+            self.note(SLACK, a.x, 1, -slack);
         }
-    };
-    if let (Some(a), Some(b)) = (e.first(), e.last())
-        && (a.l - b.l).abs() > tol
-    {
-        note("cyclicity", b.x, (a.l - b.l).abs());
-    }
-    for p in e {
-        if p.margin < -1e-6 * (1.0 + spec.clearance) {
-            note("clearance", p.x, -p.margin);
-        }
-        if p.l > spec.l_max + tol {
-            note("l_max", p.x, p.l - spec.l_max);
-        }
-    }
-    for w in e.windows(2) {
-        let slack = (w[1].l - w[0].l) + (w[1].x - w[0].x);
-        if slack < -tol {
-            note("slack", w[0].x, -slack);
-        }
-        let dv = w[1].eye_v - w[0].eye_v;
+        let dv = b.eye_v - a.eye_v;
         if dv < -1e-9 {
-            note("reverse-rotation", w[0].x, -dv);
+            self.note(REVERSE, a.x, 1, -dv);
         }
     }
-    out
+
+    /// Adds the checks of the run that follows this one.
+    fn join(&mut self, next: Checks) {
+        self.u_min = self.u_min.min(next.u_min);
+        self.u_max = self.u_max.max(next.u_max);
+        self.sums.0 += next.sums.0;
+        self.sums.1 += next.sums.1;
+        self.sums.2 += next.sums.2;
+        for (kind, b) in next.broken.into_iter().enumerate() {
+            if let Some((x, count, worst)) = b {
+                self.note(kind, x, count, worst);
+            }
+        }
+    }
+
+    fn stats(&self) -> PullStats {
+        let (total, s1, s2) = self.sums;
+        let (mean, dev) = if total > 0.0 {
+            let shift = s1 / total;
+            (1.0 + shift, (s2 / total - shift * shift).max(0.0).sqrt())
+        } else {
+            (1.0, 0.0)
+        };
+        let (u_min, u_max) = if self.u_min <= self.u_max {
+            (self.u_min, self.u_max)
+        } else {
+            (0.0, 0.0)
+        };
+        PullStats {
+            u_min,
+            u_max,
+            u_mean: mean,
+            u_rms_dev: dev,
+        }
+    }
+
+    /// Closes the cycle: the last point takes the first one's pull speed; the
+    /// free length and the eye's position (`closure_mm` apart after the circuit's
+    /// turn) are checked for cyclicity.
+    fn close(mut self, e: &mut [EyePoint], closure_mm: f64) -> (PullStats, Vec<Violation>) {
+        let u0 = e.first().map_or(0.0, |p| p.u);
+        if e.len() >= 2
+            && let Some(last) = e.last_mut()
+        {
+            last.u = u0;
+        }
+        if let (Some(a), Some(b)) = (e.first(), e.last())
+            && (a.l - b.l).abs() > 1e-6
+        {
+            self.note(0, b.x, 1, (a.l - b.l).abs());
+        }
+        if closure_mm > 1e-6 {
+            let x = e.last().map_or(0.0, |p| p.x);
+            self.note(0, x, 1, closure_mm);
+        }
+        (self.stats(), self.violations())
+    }
+
+    /// The broken constraints, in the order they first fail along `x`.
+    fn violations(&self) -> Vec<Violation> {
+        let mut v: Vec<Violation> = CONSTRAINTS
+            .iter()
+            .zip(&self.broken)
+            .filter_map(|(&constraint, b)| {
+                b.map(|(x, count, worst)| Violation {
+                    constraint,
+                    x,
+                    count,
+                    worst,
+                })
+            })
+            .collect();
+        v.sort_by(|a, b| a.x.total_cmp(&b.x));
+        v
+    }
 }
 
 /// Distance between the first eye point turned by the circuit's turn and the last.

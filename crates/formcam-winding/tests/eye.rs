@@ -8,7 +8,7 @@ use std::f64::consts::PI;
 
 use common::vessel;
 use formcam_geom::{Cylinder, Meridian};
-use formcam_winding::eye::{EyeMode, EyeSpec, eye_trajectory};
+use formcam_winding::eye::{EyeMode, EyeSpec, axis_parallel_length, eye_at, eye_trajectory};
 use formcam_winding::{Circuit, Ends, LayerSpec, Slippage, plan_layer};
 
 fn tube_layer(m: &dyn Meridian, deg: f64) -> formcam_winding::Layer {
@@ -193,9 +193,10 @@ fn equidistant_keeps_the_clearance() {
         if e.eye_z > zb {
             best = best.min(e.eye_r - 30.0);
         }
-        // The envelope is tabulated at clearance/400: kept to 0.2 % of the clearance.
+        // The envelope is tabulated at clearance/400: never closer than 1 um less
+        // than the clearance, and at most 10 um more where its corners are cut.
         assert!(
-            (best - 25.0).abs() < 0.05,
+            best > 25.0 - 1e-3 && best < 25.0 + 1e-2,
             "clearance {best} at x = {}: {e:?}",
             e.x
         );
@@ -357,4 +358,52 @@ fn the_optimum_never_turns_the_mandrel_back_and_closes_on_a_cone() {
             }
         }
     }
+}
+
+#[test]
+fn long_trajectories_agree_point_by_point_with_the_closed_forms() {
+    // 60 001 points: built in runs (one per thread where there are several) whose
+    // pull speeds, statistics and checks are joined; each point must still match
+    // its own evaluation, and each `u` its neighbours.
+    let v = vessel(30.0, 30.0);
+    let layer = vessel_layer(&v);
+    let circuit = Circuit::new(&v, &layer);
+    let spec = EyeSpec {
+        mode: EyeMode::AxisParallel,
+        radius: Some(160.0),
+        l_max: 600.0,
+        samples: 60_001,
+        ..EyeSpec::default()
+    };
+    let eye = eye_trajectory(&v, &layer, &spec).unwrap();
+    let pts = circuit.points(60_000);
+    assert_eq!(eye.points.len(), pts.len());
+    let n = pts.len() - 1;
+    let (mut lo, mut hi, mut slack) = (f64::INFINITY, f64::NEG_INFINITY, 0);
+    for (i, (e, p)) in eye.points.iter().zip(&pts).enumerate() {
+        let l = axis_parallel_length(p, 160.0).unwrap();
+        let (z, r, v, _, _) = eye_at(p, l);
+        assert!((e.l - l).abs() < 1e-12 && (e.eye_z - z).abs() < 1e-12);
+        assert!((e.eye_r - r).abs() < 1e-12 && (e.eye_v - v).abs() < 1e-12);
+        if i < n {
+            let f = &eye.points[i + 1];
+            let u = (f.lambda - e.lambda) / (f.x - e.x);
+            assert!((e.u - u).abs() < 1e-12, "u at {i}: {} vs {u}", e.u);
+            lo = lo.min(u);
+            hi = hi.max(u);
+            if f.l - e.l + (f.x - e.x) < -1e-6 {
+                slack += 1;
+            }
+        }
+    }
+    assert_eq!(eye.points[n].u, eye.points[0].u);
+    assert!((eye.stats.u_min - lo).abs() < 1e-12 && (eye.stats.u_max - hi).abs() < 1e-12);
+    let reported = eye
+        .violations
+        .iter()
+        .find(|v| v.constraint == "slack")
+        .map_or(0, |v| v.count);
+    // Axis-parallel slackens the band near the turn-arounds here.
+    assert!(slack > 0);
+    assert_eq!(reported, slack);
 }

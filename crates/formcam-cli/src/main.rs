@@ -1,6 +1,7 @@
 //! The `formcam` command line: reads job files, runs the processes of the
 //! library crates and writes their outputs atomically.
 
+mod machine;
 mod output;
 mod plot;
 mod wind;
@@ -24,6 +25,11 @@ enum Command {
     Wind {
         #[command(subcommand)]
         what: WindCommand,
+    },
+    /// Machine files: the chain as a table, forward kinematics.
+    Machine {
+        #[command(subcommand)]
+        what: MachineCommand,
     },
     /// Runs every bundled example job and writes its outputs (the main job).
     Demo {
@@ -54,6 +60,34 @@ enum WindCommand {
         #[arg(short, long)]
         output: PathBuf,
     },
+    /// The machine's axes over one circuit (inverse kinematics).
+    Axes {
+        /// The job file (TOML with [mandrel], [winding], [eye] and [machine]).
+        job: PathBuf,
+        /// Output folder (axes.csv, band.csv and the eye outputs, summary.json).
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+}
+
+#[derive(Debug, Subcommand)]
+enum MachineCommand {
+    /// The chain as a readable table: links, joints, axes, limits, key points.
+    Show {
+        /// The machine file (TOML).
+        machine: PathBuf,
+    },
+    /// Forward kinematics: every key point for each row of an axes file.
+    Fk {
+        /// The machine file (TOML).
+        machine: PathBuf,
+        /// Axis values: a CSV with a header naming the axes (mm; degrees for rotary axes).
+        #[arg(long)]
+        axes: PathBuf,
+        /// Output CSV: x (when given), then name_x, name_y, name_z per key point, mm.
+        #[arg(short, long)]
+        output: PathBuf,
+    },
 }
 
 /// An error for the user: one line, naming the file and the field.
@@ -63,12 +97,25 @@ pub struct CliError(pub String);
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Wind {
-            what: WindCommand::Path { job, output },
-        } => wind::run_path(&job, &output).map(|s| println!("{s}")),
-        Command::Wind {
-            what: WindCommand::Eye { job, output },
-        } => wind::run_eye(&job, &output).map(|s| println!("{s}")),
+        Command::Wind { what } => {
+            let (job, output, stage) = match what {
+                WindCommand::Path { job, output } => (job, output, wind::Stage::Path),
+                WindCommand::Eye { job, output } => (job, output, wind::Stage::Eye),
+                WindCommand::Axes { job, output } => (job, output, wind::Stage::Axes),
+            };
+            wind::run(&job, &output, stage).map(|s| println!("{s}"))
+        }
+        Command::Machine {
+            what: MachineCommand::Show { machine },
+        } => machine::show(&machine).map(|s| print!("{s}")),
+        Command::Machine {
+            what:
+                MachineCommand::Fk {
+                    machine,
+                    axes,
+                    output,
+                },
+        } => machine::fk(&machine, &axes, &output).map(|s| println!("{s}")),
         Command::Demo { examples, output } => wind::run_demo(&examples, &output),
     };
     match result {

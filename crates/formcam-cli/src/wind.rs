@@ -6,9 +6,12 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use formcam_machine::file::MachineKind;
+use formcam_machine::ik::{AxisTrack, IkMethod, solve};
+use formcam_machine::{Machine, Target, band_passed, placement_targets, winder_targets};
 use formcam_winding::eye::{EyeSpec, EyeTrajectory, eye_trajectory};
 use formcam_winding::job::{EyeJob, Mandrel, MandrelSpec, WindingSpec};
-use formcam_winding::{Layer, plan_layer};
+use formcam_winding::{Circuit, Layer, plan_layer};
 use serde::Deserialize;
 use serde_json::json;
 
@@ -21,6 +24,7 @@ struct Job {
     mandrel: Option<MandrelSpec>,
     winding: Option<WindingSpec>,
     eye: Option<EyeJob>,
+    machine: Option<MachineJob>,
     #[serde(flatten)]
     _other: BTreeMap<String, toml::Value>,
 }
@@ -42,11 +46,22 @@ fn line_col(text: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
+/// The `[machine]` table of a job.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MachineJob {
+    /// The machine file, relative to the job's folder or the current one.
+    file: String,
+    /// `auto` (default), `solver` or `closed-form`.
+    ik: Option<String>,
+}
+
 /// A job read and planned.
 struct Planned {
     mandrel: Mandrel,
     layer: Layer,
     eye: Option<EyeSpec>,
+    machine: Option<(PathBuf, IkMethod)>,
 }
 
 /// Plans the layer of a job; errors name the job file and the field.
@@ -67,11 +82,43 @@ fn plan(job_path: &Path) -> Result<Planned, CliError> {
     let mandrel = mspec.build(read).map_err(here)?;
     let spec = wspec.layer_spec(&mandrel).map_err(here)?;
     let eye = job.eye.map(|e| e.spec(read)).transpose().map_err(here)?;
+    let machine = job
+        .machine
+        .map(|mj| {
+            let method = match mj.ik.as_deref() {
+                None | Some("auto") => IkMethod::Auto,
+                Some("solver") => IkMethod::Solver,
+                Some("closed-form") => IkMethod::ClosedForm,
+                Some(other) => {
+                    return Err(CliError(format!(
+                        "{}: machine.ik: \"{other}\" is not one of auto, solver, closed-form",
+                        job_path.display()
+                    )));
+                }
+            };
+            let near = dir.join(&mj.file);
+            let file = if near.exists() {
+                near
+            } else {
+                PathBuf::from(&mj.file)
+            };
+            if !file.exists() {
+                return Err(CliError(format!(
+                    "{}: machine.file: \"{}\" not found (looked in the job's folder and the \
+                     current one)",
+                    job_path.display(),
+                    mj.file
+                )));
+            }
+            Ok((file, method))
+        })
+        .transpose()?;
     let layer = plan_layer(&mandrel, &spec).map_err(here)?;
     Ok(Planned {
         mandrel,
         layer,
         eye,
+        machine,
     })
 }
 
@@ -119,22 +166,25 @@ fn summary_value(job: &Path, kind: &str, layer: &Layer) -> serde_json::Value {
     })
 }
 
-/// `formcam wind path JOB -o OUT`; returns a one-line summary.
-pub fn run_path(job: &Path, out: &Path) -> Result<String, CliError> {
-    run(job, out, false)
+/// How far a `wind` command goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Stage {
+    /// The path, the pattern and the layer report.
+    Path,
+    /// ... and the payout eye's trajectory.
+    Eye,
+    /// ... and the machine's axes.
+    Axes,
 }
 
-/// `formcam wind eye JOB -o OUT`: the path outputs plus the eye trajectory.
-pub fn run_eye(job: &Path, out: &Path) -> Result<String, CliError> {
-    run(job, out, true)
-}
-
-fn run(job: &Path, out: &Path, with_eye: bool) -> Result<String, CliError> {
+/// `formcam wind path|eye|axes JOB -o OUT`; returns a one-line summary.
+pub fn run(job: &Path, out: &Path, stage: Stage) -> Result<String, CliError> {
     let t0 = Instant::now();
     let Planned {
         mandrel,
         layer,
         eye,
+        machine,
     } = plan(job)?;
     let name = job
         .file_name()
@@ -150,30 +200,92 @@ fn run(job: &Path, out: &Path, with_eye: bool) -> Result<String, CliError> {
         ),
     ];
     let mut eye_line = String::new();
-    if with_eye {
-        let spec =
-            eye.ok_or_else(|| CliError(format!("{}: [eye]: missing table", job.display())))?;
-        let traj = eye_trajectory(&mandrel, &layer, &spec)
+    let machine = if stage == Stage::Axes {
+        let (file, method) = machine
+            .ok_or_else(|| CliError(format!("{}: [machine]: missing table", job.display())))?;
+        Some((crate::machine::load(&file)?, file, method))
+    } else {
+        None
+    };
+    let placement = machine
+        .as_ref()
+        .is_some_and(|(m, _, _)| m.roles.kind == MachineKind::Placement);
+    let mut traj = None;
+    if stage >= Stage::Eye && !placement {
+        let spec = eye
+            .as_ref()
+            .ok_or_else(|| CliError(format!("{}: [eye]: missing table", job.display())))?;
+        let t = eye_trajectory(&mandrel, &layer, spec)
             .map_err(|e| CliError(format!("{}: {e}", job.display())))?;
-        add_eye_summary(&mut summary, &traj);
-        files.push(("eye.csv", eye_csv(&traj)));
+        add_eye_summary(&mut summary, &t);
+        files.push(("eye.csv", eye_csv(&t)));
         files.push((
             "eye.svg",
-            crate::plot::eye_svg(&format!("{name}: payout eye over one circuit"), &traj)?,
+            crate::plot::eye_svg(&format!("{name}: payout eye over one circuit"), &t)?,
         ));
         eye_line = format!(
             "; eye {}: u in [{:.4}, {:.4}], rms {:.4}, constraints {}",
-            serde_json::to_value(traj.mode)
+            serde_json::to_value(t.mode)
                 .ok()
                 .and_then(|v| v.as_str().map(String::from))
                 .unwrap_or_default(),
-            traj.stats.u_min,
-            traj.stats.u_max,
-            traj.stats.u_rms_dev,
-            if traj.constraints_ok {
-                "ok"
+            t.stats.u_min,
+            t.stats.u_max,
+            t.stats.u_rms_dev,
+            if t.constraints_ok { "ok" } else { "VIOLATED" }
+        );
+        traj = Some(t);
+    }
+    if let Some((m, file, method)) = &machine {
+        let targets = match &traj {
+            Some(t) => winder_targets(&mandrel, t),
+            None => {
+                let circuit = Circuit::new(&mandrel, &layer);
+                let n = eye.as_ref().map_or(2000, |e| e.samples - 1);
+                let path: Vec<_> = circuit
+                    .points(n)
+                    .iter()
+                    .map(|p| (p.x, p.z, p.r, p.v, p.alpha))
+                    .collect();
+                placement_targets(&mandrel, &path, m.roles.roller_radius)
+            }
+        };
+        let track = solve(m, &targets, *method)
+            .map_err(|e| CliError(format!("{}: {}: {e}", job.display(), file.display())))?;
+        let passed = band_passed(m, &targets, &track);
+        files.push(("axes.csv", axes_csv(m, &targets, &track)));
+        if !m.roles.band_path.is_empty() {
+            files.push(("band.csv", band_csv(m, &targets, &passed)));
+        }
+        add_axes_summary(&mut summary, m, file, &track, passed.last());
+        let _ = write!(
+            eye_line,
+            "; axes {} on {} ({}): limits {}, IK residual {:.2e} mm{}",
+            m.axes
+                .iter()
+                .map(|a| a.name.as_str())
+                .collect::<Vec<_>>()
+                .join(","),
+            m.name,
+            if track.closed_form {
+                "closed form"
             } else {
-                "VIOLATED"
+                "solver"
+            },
+            if track.limits_ok() { "ok" } else { "VIOLATED" },
+            track.max_residual_mm(),
+            if track.issues.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    ", issues: {}",
+                    track
+                        .issues
+                        .iter()
+                        .map(|i| format!("{} {}", i.kind, i.axis.as_deref().unwrap_or("")))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
             }
         );
     }
@@ -217,6 +329,114 @@ fn add_eye_summary(summary: &mut serde_json::Value, t: &EyeTrajectory) {
     }
 }
 
+/// Axis values in NC units: mm, and degrees for rotary axes.
+fn nc_value(m: &Machine, a: usize, v: f64) -> f64 {
+    if m.axes[a].is_rotary() {
+        v.to_degrees()
+    } else {
+        v
+    }
+}
+
+fn axes_csv(m: &Machine, targets: &[Target], track: &AxisTrack) -> Vec<u8> {
+    let mut s = String::with_capacity(targets.len() * 16 * (m.axes.len() + 1));
+    s.push('x');
+    for a in &m.axes {
+        let _ = write!(s, ",{}", a.name);
+    }
+    s.push('\n');
+    for (t, q) in targets.iter().zip(&track.q) {
+        let _ = write!(s, "{}", t.x);
+        for (a, v) in q.iter().enumerate() {
+            let _ = write!(s, ",{}", nc_value(m, a, *v));
+        }
+        s.push('\n');
+    }
+    s.into_bytes()
+}
+
+fn band_csv(m: &Machine, targets: &[Target], passed: &[Vec<f64>]) -> Vec<u8> {
+    let mut s = String::from("x");
+    for &k in &m.roles.band_path {
+        let _ = write!(s, ",{}", m.points[k].name);
+    }
+    s.push('\n');
+    for (t, row) in targets.iter().zip(passed) {
+        let _ = write!(s, "{}", t.x);
+        for v in row {
+            let _ = write!(s, ",{v}");
+        }
+        s.push('\n');
+    }
+    s.into_bytes()
+}
+
+fn add_axes_summary(
+    summary: &mut serde_json::Value,
+    m: &Machine,
+    file: &Path,
+    t: &AxisTrack,
+    passed: Option<&Vec<f64>>,
+) {
+    let issues: Vec<serde_json::Value> = t
+        .issues
+        .iter()
+        .map(|i| {
+            json!({
+                "kind": i.kind,
+                "axis": i.axis,
+                "x": i.x,
+                "count": i.count,
+                "worst": i.worst,
+            })
+        })
+        .collect();
+    let range: Vec<serde_json::Value> = m
+        .axes
+        .iter()
+        .enumerate()
+        .map(|(a, ax)| {
+            let lo = t.q.iter().map(|q| nc_value(m, a, q[a])).fold(f64::INFINITY, f64::min);
+            let hi = t.q.iter().map(|q| nc_value(m, a, q[a])).fold(f64::NEG_INFINITY, f64::max);
+            json!({ "axis": ax.name, "min": lo, "max": hi, "unit": if ax.is_rotary() { "deg" } else { "mm" } })
+        })
+        .collect();
+    if let Some(obj) = summary.as_object_mut() {
+        obj.insert("machine".into(), json!(m.name));
+        obj.insert("machine_file".into(), json!(file.display().to_string()));
+        obj.insert(
+            "axes".into(),
+            json!(m.axes.iter().map(|a| a.name.clone()).collect::<Vec<_>>()),
+        );
+        obj.insert("limits_ok".into(), json!(t.limits_ok()));
+        obj.insert("max_ik_residual_mm".into(), json!(t.max_residual_mm()));
+        obj.insert(
+            "max_ik_orientation_residual".into(),
+            json!(t.residual_orientation.iter().copied().fold(0.0, f64::max)),
+        );
+        obj.insert(
+            "ik_method".into(),
+            json!(if t.closed_form {
+                "closed-form"
+            } else {
+                "solver"
+            }),
+        );
+        obj.insert("ik_issues".into(), json!(issues));
+        obj.insert("axis_ranges".into(), json!(range));
+        if let Some(p) = passed {
+            let names: serde_json::Map<String, serde_json::Value> = m
+                .roles
+                .band_path
+                .iter()
+                .zip(p)
+                .map(|(&k, v)| (m.points[k].name.clone(), json!(v)))
+                .collect();
+            obj.insert("band_passed_per_circuit_mm".into(), json!(names));
+        }
+    }
+}
+
 fn eye_csv(t: &EyeTrajectory) -> Vec<u8> {
     let mut s = String::with_capacity(t.points.len() * 200);
     s.push_str("x,z,r,v,alpha,l,eye_z,eye_r,eye_v,lambda,u,margin\n");
@@ -254,8 +474,15 @@ pub fn run_demo(examples: &Path, out: &Path) -> Result<(), CliError> {
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
-        let has_eye = read_job(job)?.eye.is_some();
-        let line = run(job, &out.join(&name), has_eye)?;
+        let j = read_job(job)?;
+        let stage = if j.machine.is_some() {
+            Stage::Axes
+        } else if j.eye.is_some() {
+            Stage::Eye
+        } else {
+            Stage::Path
+        };
+        let line = run(job, &out.join(&name), stage)?;
         println!("{line}");
     }
     println!("{} jobs written under {}", jobs.len(), out.display());

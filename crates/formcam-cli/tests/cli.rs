@@ -325,3 +325,104 @@ fn bad_eye_tables_fail_with_one_line_naming_the_field() {
     );
     assert!(err.contains("eye.curve"), "{err}");
 }
+
+fn machines() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../machines")
+}
+
+#[test]
+fn wind_axes_writes_axes_that_forward_kinematics_takes_back_to_the_eye() {
+    let out = succeeds("axes", &["wind", "axes", "vessel-axes-4axis.toml"]);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["machine"], "4-axis winder");
+    assert_eq!(summary["axes"], serde_json::json!(["A", "X", "Y", "B"]));
+    assert_eq!(summary["limits_ok"], true);
+    assert!(summary["max_ik_residual_mm"].as_f64().unwrap() < 1e-9);
+    let axes = std::fs::read_to_string(out.join("axes.csv")).unwrap();
+    assert!(axes.starts_with("x,A,X,Y,B\n"));
+    // Forward kinematics of the axes file puts the payout point on the eye: the
+    // spindle turns the eye's (Z, R, V) to the payout point's side, so compare
+    // the axial position and the distance from the spindle axis.
+    let points = out.join("points.csv");
+    let st = formcam()
+        .args(["machine", "fk"])
+        .arg(machines().join("winder-4axis.toml"))
+        .arg("--axes")
+        .arg(out.join("axes.csv"))
+        .arg("-o")
+        .arg(&points)
+        .output()
+        .unwrap();
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    let eye = std::fs::read_to_string(out.join("eye.csv")).unwrap();
+    let fk = std::fs::read_to_string(&points).unwrap();
+    assert!(fk.starts_with("x,payout_x,payout_y,payout_z"));
+    let mut rows = 0;
+    for (e, p) in eye.lines().skip(1).zip(fk.lines().skip(1)) {
+        let e: Vec<f64> = e.split(',').map(|v| v.parse().unwrap()).collect();
+        let p: Vec<f64> = p.split(',').map(|v| v.parse().unwrap()).collect();
+        // eye.csv: x,z,r,v,alpha,l,eye_z,eye_r,... ; the spindle axis is world x
+        // at y = 0, z = 1000 mm.
+        let r = p[2].hypot(p[3] - 1000.0);
+        assert!((p[0] - e[0]).abs() < 1e-9);
+        assert!(
+            (p[1] - e[6]).abs() < 1e-6 && (r - e[7]).abs() < 1e-6,
+            "{p:?} {e:?}"
+        );
+        rows += 1;
+    }
+    assert_eq!(rows, 1001);
+}
+
+#[test]
+fn machine_show_prints_the_chain() {
+    let st = formcam()
+        .args(["machine", "show"])
+        .arg(machines().join("winder-6axis.toml"))
+        .output()
+        .unwrap();
+    assert!(st.status.success());
+    let text = String::from_utf8_lossy(&st.stdout);
+    for word in [
+        "6-axis winder",
+        "carriage",
+        "prismatic",
+        "revolute",
+        "payout",
+    ] {
+        assert!(text.contains(word), "{word} missing in {text}");
+    }
+}
+
+#[test]
+fn bad_machines_fail_with_one_line_naming_the_file_and_link() {
+    let text = std::fs::read_to_string(machines().join("winder-4axis.toml"))
+        .unwrap()
+        .replace("min_mm = 40.0", "min_mm = 900.0");
+    let dir = scratch("bad-machine");
+    let m = dir.join("bad.toml");
+    std::fs::write(&m, text).unwrap();
+    let st = formcam()
+        .args(["machine", "show"])
+        .arg(&m)
+        .output()
+        .unwrap();
+    assert!(!st.status.success());
+    let err = String::from_utf8_lossy(&st.stderr).trim_end().to_string();
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("bad.toml") && err.contains("link \"cross\"") && err.contains("min_mm"),
+        "{err}"
+    );
+    // A job naming a machine file that does not exist.
+    let job = std::fs::read_to_string(examples().join("vessel-axes-4axis.toml"))
+        .unwrap()
+        .replace("../machines/winder-4axis.toml", "no-such-machine.toml");
+    let err = fails_in("axes", "missing-machine", &job, &[]);
+    assert!(err.contains("no-such-machine.toml"), "{err}");
+}

@@ -1,0 +1,150 @@
+//! `formcam machine show|fk`, and reading machine files for `wind axes`.
+
+use std::fmt::Write as _;
+use std::fs;
+use std::path::Path;
+
+use formcam_machine::{Machine, MachineError};
+
+use crate::CliError;
+use crate::output::write_all;
+
+/// Reads a machine file; errors name the file, the link or point, and the field.
+pub fn load(path: &Path) -> Result<Machine, CliError> {
+    let text = fs::read_to_string(path).map_err(|e| {
+        CliError(format!(
+            "{}: cannot read the machine file: {e}",
+            path.display()
+        ))
+    })?;
+    Machine::from_toml(&text).map_err(|e| match e {
+        MachineError::Syntax {
+            line,
+            column,
+            message,
+        } => CliError(format!("{}:{line}:{column}: {message}", path.display())),
+        other => CliError(format!("{}: {other}", path.display())),
+    })
+}
+
+/// `formcam machine show MACHINE`.
+pub fn show(path: &Path) -> Result<String, CliError> {
+    Ok(load(path)?.table())
+}
+
+/// A row of an axes file: `x` when given, the axes in the machine's order (rad, mm).
+type AxesRow = (Option<f64>, Vec<f64>);
+
+/// The rows of an axes CSV.
+fn read_axes(m: &Machine, path: &Path) -> Result<Vec<AxesRow>, CliError> {
+    let text = fs::read_to_string(path).map_err(|e| {
+        CliError(format!(
+            "{}: cannot read the axes file: {e}",
+            path.display()
+        ))
+    })?;
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
+    let (_, header) = lines.next().ok_or_else(|| {
+        CliError(format!(
+            "{}: empty file (need a header row)",
+            path.display()
+        ))
+    })?;
+    let names: Vec<&str> = header.split(',').map(str::trim).collect();
+    let x_col = names.iter().position(|n| *n == "x");
+    let cols: Vec<usize> = m
+        .axes
+        .iter()
+        .map(|a| {
+            names.iter().position(|n| *n == a.name).ok_or_else(|| {
+                CliError(format!(
+                    "{}:1: no column \"{}\" (the machine's axes are {})",
+                    path.display(),
+                    a.name,
+                    m.axes
+                        .iter()
+                        .map(|a| a.name.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ))
+            })
+        })
+        .collect::<Result<_, _>>()?;
+    let mut rows = Vec::new();
+    for (i, line) in lines {
+        let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+        let num = |c: usize, name: &str| -> Result<f64, CliError> {
+            cells
+                .get(c)
+                .and_then(|s| s.parse::<f64>().ok())
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| {
+                    CliError(format!(
+                        "{}:{}: column \"{name}\": not a finite number",
+                        path.display(),
+                        i + 1
+                    ))
+                })
+        };
+        let x = x_col.map(|c| num(c, "x")).transpose()?;
+        let q = m
+            .axes
+            .iter()
+            .zip(&cols)
+            .map(|(a, &c)| {
+                let v = num(c, &a.name)?;
+                Ok(if a.is_rotary() { v.to_radians() } else { v })
+            })
+            .collect::<Result<Vec<f64>, CliError>>()?;
+        rows.push((x, q));
+    }
+    Ok(rows)
+}
+
+/// `formcam machine fk MACHINE --axes AXES -o POINTS`.
+pub fn fk(machine: &Path, axes: &Path, out: &Path) -> Result<String, CliError> {
+    let m = load(machine)?;
+    let rows = read_axes(&m, axes)?;
+    let with_x = rows.first().is_some_and(|r| r.0.is_some());
+    let mut s = String::with_capacity(rows.len() * 40 * (m.points.len() + 1));
+    let mut head: Vec<String> = Vec::new();
+    if with_x {
+        head.push("x".into());
+    }
+    for p in &m.points {
+        for c in ["x", "y", "z"] {
+            head.push(format!("{}_{c}", p.name));
+        }
+    }
+    s.push_str(&head.join(","));
+    s.push('\n');
+    for (x, q) in &rows {
+        let mut cells: Vec<String> = Vec::new();
+        if let Some(x) = x {
+            cells.push(x.to_string());
+        }
+        for p in m.key_points(q) {
+            cells.extend([p.x, p.y, p.z].map(|v| v.to_string()));
+        }
+        let _ = writeln!(s, "{}", cells.join(","));
+    }
+    let dir = out
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = out
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .ok_or_else(|| CliError(format!("{}: not a file name", out.display())))?;
+    write_all(dir, &[(name.as_str(), s.into_bytes())])?;
+    Ok(format!(
+        "{}: {} rows, {} key points -> {}",
+        m.name,
+        rows.len(),
+        m.points.len(),
+        out.display()
+    ))
+}

@@ -1,0 +1,62 @@
+//! Inverse kinematics of a 1e5-point circuit on the 4-axis winder (closed form)
+//! and the 6-axis winder (Levenberg–Marquardt).
+
+#![allow(clippy::expect_used, missing_docs)]
+
+use std::hint::black_box;
+use std::path::PathBuf;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use formcam_geom::{DomeShape, Vessel};
+use formcam_machine::ik::{IkMethod, solve};
+use formcam_machine::{Machine, winder_targets};
+use formcam_winding::eye::{EyeMode, EyeSpec, eye_trajectory};
+use formcam_winding::{Ends, LayerSpec, Slippage, plan_layer};
+
+fn machine(name: &str) -> Machine {
+    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../machines")
+        .join(name);
+    Machine::from_toml(&std::fs::read_to_string(p).expect("read")).expect("machine")
+}
+
+fn benches(c: &mut Criterion) {
+    let v = Vessel::new(
+        100.0,
+        300.0,
+        (DomeShape::Hemisphere, 30.0),
+        (DomeShape::Hemisphere, 30.0),
+    )
+    .expect("vessel");
+    let spec = LayerSpec {
+        slippage: Slippage::Geodesic,
+        ends: Ends::Poles {
+            start: 30.0,
+            end: 30.0,
+        },
+        ..LayerSpec::default()
+    };
+    let layer = plan_layer(&v, &spec).expect("layer");
+    let eye = EyeSpec {
+        mode: EyeMode::AxisParallel,
+        radius: Some(160.0),
+        l_max: 600.0,
+        samples: 100_001,
+        ..EyeSpec::default()
+    };
+    let t = eye_trajectory(&v, &layer, &eye).expect("eye");
+    let targets = winder_targets(&v, &t);
+    for (name, method) in [
+        ("winder-4axis.toml", IkMethod::Auto),
+        ("winder-4axis.toml", IkMethod::Solver),
+        ("winder-6axis.toml", IkMethod::Auto),
+    ] {
+        let m = machine(name);
+        c.bench_function(&format!("IK {name} {method:?}, 1e5-point circuit"), |b| {
+            b.iter(|| black_box(solve(&m, &targets, method).expect("ik")))
+        });
+    }
+}
+
+criterion_group!(name = g; config = Criterion::default().sample_size(10); targets = benches);
+criterion_main!(g);

@@ -1,0 +1,673 @@
+//! Inverse kinematics (eq. 2 of seed 003): axis values that put the payout point
+//! on the target, `T(x) (r + l tau) = Y(x)`, with the orientation equations where
+//! the machine has more than three driven axes besides the spindle.
+//!
+//! * The spindle turns the mandrel so that the eye (or the path point,
+//!   `spindle_follows = "path"`) faces the payout point's home direction.
+//! * The other axes: Levenberg–Marquardt (`levenberg-marquardt`), seeded from the
+//!   previous point; residuals are the position (mm) and, scaled by
+//!   [`ORIENTATION_SCALE`], the orientation equations: a winder's eye roller
+//!   perpendicular to the free band (and to the band's normal when a fifth axis
+//!   allows), a placement head pressing along the inward normal with its roller
+//!   across the path.
+//! * Lathe-type winders (spindle, carriage along it, optional radial cross feed,
+//!   optional eye rotation about the cross feed) are solved in closed form.
+
+use std::cell::RefCell;
+use std::f64::consts::{PI, TAU};
+
+use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
+use nalgebra::{DMatrix, DVector, Dyn, Isometry3, Owned, Point3, Unit, Vector3};
+
+use crate::file::{MachineKind, SpindleFollows};
+use crate::{JointKind, Machine, MachineError, Target};
+
+/// Orientation residuals (dimensionless) are weighed as lengths of this many mm.
+pub const ORIENTATION_SCALE: f64 = 100.0;
+
+/// Which solver.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IkMethod {
+    /// The closed form where the machine has one, else the solver.
+    Auto,
+    /// Levenberg–Marquardt for every machine.
+    Solver,
+    /// The closed form (an error where the machine has none).
+    ClosedForm,
+}
+
+/// A problem found at some points.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Issue {
+    /// `limit`, `unreachable`, `jump`.
+    pub kind: &'static str,
+    /// The axis concerned (NC address), if one.
+    pub axis: Option<String>,
+    /// The first `x` where it happens, mm.
+    pub x: f64,
+    /// How many points.
+    pub count: usize,
+    /// The worst excess (mm or rad beyond the limit; the residual in mm; the jump).
+    pub worst: f64,
+}
+
+/// The axis values of a whole trajectory.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AxisTrack {
+    /// Which solver produced it.
+    pub closed_form: bool,
+    /// Axis values per point (rad or mm, in the order of the machine's axes).
+    pub q: Vec<Vec<f64>>,
+    /// Position residual per point, mm.
+    pub residual_mm: Vec<f64>,
+    /// Orientation residual per point (largest of the equations' cosines).
+    pub residual_orientation: Vec<f64>,
+    /// Problems found.
+    pub issues: Vec<Issue>,
+}
+
+impl AxisTrack {
+    /// Whether every axis stays within its limits.
+    pub fn limits_ok(&self) -> bool {
+        !self.issues.iter().any(|i| i.kind == "limit")
+    }
+
+    /// The largest position residual, mm.
+    pub fn max_residual_mm(&self) -> f64 {
+        self.residual_mm.iter().copied().fold(0.0, f64::max)
+    }
+}
+
+/// Where a joint moves: the world frame of its motion at a pose.
+fn joint_axis(m: &Machine, poses: &[Isometry3<f64>], link: usize) -> (Point3<f64>, Vector3<f64>) {
+    let l = &m.links[link];
+    let f = match l.parent {
+        Some(p) => poses[p] * l.joint.pre,
+        None => l.joint.pre,
+    };
+    (
+        Point3::from(f.translation.vector),
+        f.rotation * l.joint.direction.into_inner(),
+    )
+}
+
+/// The spindle's rule: the angle that turns the face point to the home direction.
+#[derive(Debug, Clone, Copy)]
+struct Spindle {
+    axis: usize,
+    origin: Point3<f64>,
+    k: Vector3<f64>,
+    home: Vector3<f64>,
+    follows: SpindleFollows,
+}
+
+impl Spindle {
+    fn new(m: &Machine) -> Result<Option<Self>, MachineError> {
+        let Some(axis) = m.roles.spindle else {
+            return Ok(None);
+        };
+        let poses = m.poses(&m.home());
+        let (origin, k) = joint_axis(m, &poses, m.axes[axis].link);
+        let p = poses[m.points[m.roles.payout].link] * m.points[m.roles.payout].position;
+        let d = p - origin;
+        let perp = d - k * d.dot(&k);
+        if perp.norm() < 1e-9 {
+            return Err(MachineError::Ik(
+                "the payout point lies on the spindle axis at the home position".into(),
+            ));
+        }
+        Ok(Some(Self {
+            axis,
+            origin,
+            k,
+            home: perp.normalize(),
+            follows: m.roles.spindle_follows,
+        }))
+    }
+
+    /// The spindle value, near `prev`, that turns the face point of `t` to the
+    /// home direction, given the mandrel's pose `mandrel` at spindle value `cur`.
+    fn angle(&self, t: &Target, mandrel: &Isometry3<f64>, cur: f64, prev: f64) -> f64 {
+        let face = match self.follows {
+            SpindleFollows::Eye => t.point,
+            SpindleFollows::Path => t.path_point,
+        };
+        let d = mandrel * face - self.origin;
+        let perp = d - self.k * d.dot(&self.k);
+        let delta = self
+            .k
+            .dot(&perp.cross(&self.home))
+            .atan2(perp.dot(&self.home));
+        unwrap_near(cur + delta, prev, TAU)
+    }
+}
+
+/// `a` shifted by a multiple of `period` to lie nearest `near`.
+fn unwrap_near(a: f64, near: f64, period: f64) -> f64 {
+    a + period * ((near - a) / period).round()
+}
+
+/// The equations at one target for the axes `q` (only those in `unknowns` move).
+struct Equations<'a> {
+    m: &'a Machine,
+    t: &'a Target,
+    unknowns: &'a [usize],
+    q: Vec<f64>,
+    /// Per axis: whether it moves the payout point's link, the mandrel's link.
+    moves: &'a [(bool, bool)],
+    /// Link poses, reused between evaluations.
+    poses: RefCell<Vec<Isometry3<f64>>>,
+}
+
+/// Per axis: whether it moves the payout point's link and the mandrel's link.
+fn moves(m: &Machine) -> Vec<(bool, bool)> {
+    let head = m.points[m.roles.payout].link;
+    m.axes
+        .iter()
+        .map(|a| {
+            (
+                m.is_ancestor(a.link, head),
+                m.is_ancestor(a.link, m.roles.mandrel),
+            )
+        })
+        .collect()
+}
+
+/// Residuals and, when asked, their Jacobian columns for the unknowns.
+struct Evaluated {
+    r: Vec<f64>,
+    jac: Option<DMatrix<f64>>,
+}
+
+impl<'a> Equations<'a> {
+    fn new(
+        m: &'a Machine,
+        t: &'a Target,
+        unknowns: &'a [usize],
+        moves: &'a [(bool, bool)],
+        q: &[f64],
+    ) -> Self {
+        Self {
+            m,
+            t,
+            unknowns,
+            q: q.to_vec(),
+            moves,
+            poses: RefCell::new(Vec::with_capacity(m.links.len())),
+        }
+    }
+
+    fn orientation_rows(&self) -> usize {
+        let roles = &self.m.roles;
+        match roles.kind {
+            // Beyond three driven axes (the spindle counted), one orientation
+            // equation per axis, at most the two of the eye roller.
+            MachineKind::Winder => match roles.roller_axis {
+                Some(_) => self.m.axes.len().saturating_sub(3).min(2),
+                None => 0,
+            },
+            MachineKind::Placement => 2 + usize::from(roles.roller_axis.is_some()),
+        }
+    }
+
+    fn eval(&self, with_jacobian: bool) -> Evaluated {
+        let m = self.m;
+        let roles = &m.roles;
+        let mut buf = self.poses.borrow_mut();
+        m.poses_into(&self.q, &mut buf);
+        let poses: &[Isometry3<f64>] = &buf;
+        let payout = &m.points[roles.payout];
+        let head = poses[payout.link];
+        let mandrel = poses[roles.mandrel];
+        let p = head * payout.position;
+        let target = mandrel * self.t.point;
+        let band = mandrel.rotation * self.t.band.into_inner();
+        let normal = mandrel.rotation * self.t.normal.into_inner();
+        let roller = roles.roller_axis.map(|a| head.rotation * a.into_inner());
+        let press = roles.head_normal.map(|a| head.rotation * a.into_inner());
+        let side = normal.cross(&band);
+        let s = ORIENTATION_SCALE;
+        let mut r = vec![p.x - target.x, p.y - target.y, p.z - target.z];
+        let rows = self.orientation_rows();
+        match roles.kind {
+            MachineKind::Winder => {
+                if let Some(a) = roller {
+                    if rows >= 1 {
+                        r.push(s * a.dot(&band));
+                    }
+                    if rows >= 2 {
+                        r.push(s * a.dot(&normal));
+                    }
+                }
+            }
+            MachineKind::Placement => {
+                let n = press.unwrap_or_else(Vector3::z);
+                r.push(s * n.dot(&band));
+                r.push(s * n.dot(&side));
+                if let Some(a) = roller {
+                    r.push(s * a.dot(&band));
+                }
+            }
+        }
+        let jac = with_jacobian.then(|| {
+            let mut j = DMatrix::zeros(r.len(), self.unknowns.len());
+            for (c, &ax) in self.unknowns.iter().enumerate() {
+                let link = m.axes[ax].link;
+                let (o, w) = joint_axis(m, poses, link);
+                let rev = m.axes[ax].kind == JointKind::Revolute;
+                let (moves_head, moves_mandrel) = self.moves[ax];
+                // Derivatives of a point and of a direction carried by the joint.
+                let dpt = |x: &Point3<f64>, moved: bool| {
+                    if !moved {
+                        Vector3::zeros()
+                    } else if rev {
+                        w.cross(&(x - o))
+                    } else {
+                        w
+                    }
+                };
+                let ddir = |d: &Vector3<f64>, moved: bool| {
+                    if moved && rev {
+                        w.cross(d)
+                    } else {
+                        Vector3::zeros()
+                    }
+                };
+                let dp = dpt(&p, moves_head) - dpt(&target, moves_mandrel);
+                j[(0, c)] = dp.x;
+                j[(1, c)] = dp.y;
+                j[(2, c)] = dp.z;
+                let d_band = ddir(&band, moves_mandrel);
+                let d_normal = ddir(&normal, moves_mandrel);
+                let mut row = 3;
+                let mut put = |v: f64| {
+                    j[(row, c)] = s * v;
+                    row += 1;
+                };
+                match roles.kind {
+                    MachineKind::Winder => {
+                        if let Some(a) = roller {
+                            let da = ddir(&a, moves_head);
+                            if rows >= 1 {
+                                put(da.dot(&band) + a.dot(&d_band));
+                            }
+                            if rows >= 2 {
+                                put(da.dot(&normal) + a.dot(&d_normal));
+                            }
+                        }
+                    }
+                    MachineKind::Placement => {
+                        let n = press.unwrap_or_else(Vector3::z);
+                        let dn = ddir(&n, moves_head);
+                        let d_side = d_normal.cross(&band) + normal.cross(&d_band);
+                        put(dn.dot(&band) + n.dot(&d_band));
+                        put(dn.dot(&side) + n.dot(&d_side));
+                        if let Some(a) = roller {
+                            let da = ddir(&a, moves_head);
+                            put(da.dot(&band) + a.dot(&d_band));
+                        }
+                    }
+                }
+            }
+            j
+        });
+        Evaluated { r, jac }
+    }
+}
+
+impl LeastSquaresProblem<f64, Dyn, Dyn> for Equations<'_> {
+    type ResidualStorage = Owned<f64, Dyn>;
+    type JacobianStorage = Owned<f64, Dyn, Dyn>;
+    type ParameterStorage = Owned<f64, Dyn>;
+
+    fn set_params(&mut self, x: &DVector<f64>) {
+        for (k, &ax) in self.unknowns.iter().enumerate() {
+            self.q[ax] = x[k];
+        }
+    }
+
+    fn params(&self) -> DVector<f64> {
+        DVector::from_iterator(
+            self.unknowns.len(),
+            self.unknowns.iter().map(|&a| self.q[a]),
+        )
+    }
+
+    fn residuals(&self) -> Option<DVector<f64>> {
+        let e = self.eval(false);
+        Some(DVector::from_vec(e.r))
+    }
+
+    fn jacobian(&self) -> Option<DMatrix<f64>> {
+        self.eval(true).jac
+    }
+}
+
+/// The closed form of a lathe-type winder.
+#[derive(Debug, Clone)]
+struct Lathe {
+    spindle: Spindle,
+    /// Mandrel pose at home.
+    mandrel0: Isometry3<f64>,
+    /// Payout point at home, relative to the spindle axis: axial part and radial vector.
+    p_axial: f64,
+    p_perp: Vector3<f64>,
+    carriage: (usize, f64),
+    cross: Option<(usize, Vector3<f64>)>,
+    /// Eye rotation: axis index, world direction, roller axis at home.
+    eye: Option<(usize, Vector3<f64>, Vector3<f64>)>,
+    /// Home axis values: every closed-form value is an offset from them.
+    home: Vec<f64>,
+}
+
+impl Lathe {
+    /// The closed form, if the machine is lathe-type.
+    fn detect(m: &Machine, spindle: Option<Spindle>) -> Option<Self> {
+        let spindle = spindle?;
+        if m.roles.kind != MachineKind::Winder || spindle.follows != SpindleFollows::Eye {
+            return None;
+        }
+        let home = m.home();
+        let poses = m.poses(&home);
+        let payout = &m.points[m.roles.payout];
+        let p0 = poses[payout.link] * payout.position;
+        let d = p0 - spindle.origin;
+        let k = spindle.k;
+        let p_axial = d.dot(&k);
+        let p_perp = d - k * p_axial;
+        let (mut carriage, mut cross, mut eye) = (None, None, None);
+        for (i, a) in m.axes.iter().enumerate() {
+            if i == spindle.axis {
+                continue;
+            }
+            if m.is_ancestor(a.link, m.roles.mandrel) || !m.is_ancestor(a.link, payout.link) {
+                return None;
+            }
+            let (o, w) = joint_axis(m, &poses, a.link);
+            match a.kind {
+                JointKind::Prismatic
+                    if (w.dot(&k).abs() - 1.0).abs() < 1e-9 && carriage.is_none() =>
+                {
+                    carriage = Some((i, w.dot(&k)));
+                }
+                JointKind::Prismatic
+                    if w.dot(&k).abs() < 1e-9
+                        && cross.is_none()
+                        && w.cross(&p_perp).norm() < 1e-9 * p_perp.norm() =>
+                {
+                    cross = Some((i, w));
+                }
+                JointKind::Revolute if eye.is_none() => {
+                    let off = p0 - o;
+                    if (off - w * off.dot(&w)).norm() > 1e-9 {
+                        return None;
+                    }
+                    let a0 = poses[payout.link].rotation * m.roles.roller_axis?.into_inner();
+                    if a0.dot(&w).abs() > 1e-9 {
+                        return None;
+                    }
+                    eye = Some((i, w, a0));
+                }
+                _ => return None,
+            }
+        }
+        // Translations must not hang below the eye's rotation.
+        if let Some((e, _, _)) = eye {
+            for (ax, _) in carriage
+                .iter()
+                .map(|c| (c.0, ()))
+                .chain(cross.iter().map(|c| (c.0, ())))
+            {
+                if m.is_ancestor(m.axes[e].link, m.axes[ax].link) {
+                    return None;
+                }
+            }
+            if let Some((_, w, _)) = eye
+                && let Some((_, c)) = cross
+                && w.cross(&c).norm() > 1e-9
+            {
+                return None;
+            }
+        }
+        Some(Self {
+            spindle,
+            mandrel0: poses[m.roles.mandrel],
+            p_axial,
+            p_perp,
+            carriage: carriage?,
+            cross,
+            eye,
+            home,
+        })
+    }
+
+    /// Axis values for `t`, near `prev`.
+    fn solve(&self, t: &Target, prev: &[f64], q: &mut [f64]) {
+        let sp = &self.spindle;
+        let k = sp.k;
+        let d0 = self.mandrel0 * t.point - sp.origin;
+        let a_e = d0.dot(&k);
+        let d0_perp = d0 - k * a_e;
+        let r_e = d0_perp.norm();
+        let (ci, sign) = self.carriage;
+        q[ci] = self.home[ci] + (a_e - self.p_axial) / sign;
+        let p_perp = match self.cross {
+            Some((xi, c)) => {
+                let b = self.p_perp.dot(&c);
+                let disc = b * b - self.p_perp.norm_squared() + r_e * r_e;
+                let roots = [-b + disc.max(0.0).sqrt(), -b - disc.max(0.0).sqrt()];
+                // The root on the payout point's home side of the axis.
+                let u = roots
+                    .into_iter()
+                    .find(|u| (self.p_perp + c * *u).dot(&self.p_perp) > 0.0)
+                    .unwrap_or(roots[0]);
+                q[xi] = self.home[xi] + u;
+                self.p_perp + c * u
+            }
+            None => self.p_perp,
+        };
+        let delta = k.dot(&d0_perp.cross(&p_perp)).atan2(d0_perp.dot(&p_perp));
+        q[sp.axis] = unwrap_near(self.home[sp.axis] + delta, prev[sp.axis], TAU);
+        if let Some((ei, w, a0)) = self.eye {
+            let turn = q[sp.axis] - self.home[sp.axis];
+            let rot = nalgebra::UnitQuaternion::from_axis_angle(&Unit::new_unchecked(k), turn);
+            let band = rot * (self.mandrel0.rotation * t.band.into_inner());
+            let theta = (-a0.dot(&band)).atan2(w.cross(&a0).dot(&band));
+            q[ei] = unwrap_near(self.home[ei] + theta, prev[ei], PI);
+        }
+    }
+}
+
+/// Solves the axes for every target, seeded point after point.
+pub fn solve(m: &Machine, targets: &[Target], method: IkMethod) -> Result<AxisTrack, MachineError> {
+    let spindle = Spindle::new(m)?;
+    let lathe = match method {
+        IkMethod::Solver => None,
+        IkMethod::Auto => Lathe::detect(m, spindle),
+        IkMethod::ClosedForm => Some(Lathe::detect(m, spindle).ok_or_else(|| {
+            MachineError::Ik(format!(
+                "\"{}\" has no closed form (it is not a lathe-type winder: spindle, carriage \
+                 along it, radial cross feed, eye rotation about the cross feed)",
+                m.name
+            ))
+        })?),
+    };
+    let unknowns: Vec<usize> = (0..m.axes.len())
+        .filter(|&a| Some(a) != spindle.map(|s| s.axis))
+        .collect();
+    let mut q = m.home();
+    let mut prev = q.clone();
+    let mut track = AxisTrack {
+        closed_form: lathe.is_some(),
+        q: Vec::with_capacity(targets.len()),
+        residual_mm: Vec::with_capacity(targets.len()),
+        residual_orientation: Vec::with_capacity(targets.len()),
+        issues: Vec::new(),
+    };
+    let lm = LevenbergMarquardt::new().with_tol(1e-15).with_patience(200);
+    let moves = moves(m);
+    let equations = |t, q: &[f64]| Equations::new(m, t, &unknowns, &moves, q);
+    let mut before = q.clone();
+    let Some(t0) = targets.first() else {
+        return Ok(track);
+    };
+    let mut check = equations(t0, &q);
+    for (i, t) in targets.iter().enumerate() {
+        let first = i == 0;
+        if let Some(l) = &lathe {
+            l.solve(t, &prev, &mut q);
+        } else {
+            if let Some(sp) = &spindle {
+                let poses = m.poses(&q);
+                q[sp.axis] = sp.angle(t, &poses[m.roles.mandrel], q[sp.axis], prev[sp.axis]);
+            }
+            if !unknowns.is_empty() {
+                // Start from the path extrapolated through the two previous points.
+                let mut start = q.clone();
+                if i >= 2 {
+                    for &a in &unknowns {
+                        start[a] = 2.0 * prev[a] - before[a];
+                    }
+                }
+                q = match newton(equations(t, &start)) {
+                    Some(done) => done,
+                    None => lm.minimize(equations(t, &q)).0.q,
+                };
+                // Revolute joints: the turn nearest the previous point's.
+                for &a in &unknowns {
+                    if m.axes[a].is_rotary() {
+                        q[a] = unwrap_near(q[a], prev[a], TAU);
+                    }
+                }
+                if first {
+                    nearest_home_branch(m, t, &unknowns, &mut q);
+                }
+            }
+        }
+        check.t = t;
+        check.q.copy_from_slice(&q);
+        let e = check.eval(false);
+        let pos = (e.r[0] * e.r[0] + e.r[1] * e.r[1] + e.r[2] * e.r[2]).sqrt();
+        let ori = e.r[3..]
+            .iter()
+            .map(|v| (v / ORIENTATION_SCALE).abs())
+            .fold(0.0, f64::max);
+        track.residual_mm.push(pos);
+        track.residual_orientation.push(ori);
+        track.q.push(q.clone());
+        before.clone_from(&prev);
+        prev.clone_from(&q);
+    }
+    track.issues = feasibility(m, targets, &track);
+    Ok(track)
+}
+
+/// Gauss–Newton from a close start (the fast path between neighbouring points):
+/// the axes when the residual falls below 1e-12 within a few steps, each step
+/// decreasing it; `None` otherwise (Levenberg–Marquardt then takes over).
+fn newton(mut eq: Equations<'_>) -> Option<Vec<f64>> {
+    let mut e = eq.eval(true);
+    let norm = |r: &[f64]| r.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let mut res = norm(&e.r);
+    for _ in 0..8 {
+        if res < 1e-12 {
+            return Some(eq.q);
+        }
+        let j = e.jac?;
+        let r = DVector::from_vec(e.r);
+        let step = j.svd(true, true).solve(&(-r), 1e-12).ok()?;
+        let mut q = eq.q.clone();
+        for (k, &a) in eq.unknowns.iter().enumerate() {
+            q[a] += step[k];
+        }
+        let old = std::mem::replace(&mut eq.q, q);
+        e = eq.eval(true);
+        let next = norm(&e.r);
+        if next.is_nan() || next >= res {
+            eq.q = old;
+            return None;
+        }
+        res = next;
+    }
+    (res < 1e-12).then_some(eq.q)
+}
+
+/// At the first point: a rotary axis that can turn half a turn without moving
+/// the payout point or breaking the orientation equations (an eye roller is the
+/// same roller either way round) takes the half turn nearest its home value.
+fn nearest_home_branch(m: &Machine, t: &Target, unknowns: &[usize], q: &mut [f64]) {
+    let moves = moves(m);
+    let norm = |q: &[f64]| {
+        let e = Equations::new(m, t, unknowns, &moves, q).eval(false);
+        e.r.iter().map(|v| v * v).sum::<f64>().sqrt()
+    };
+    let base = norm(q);
+    for &a in unknowns {
+        if !m.axes[a].is_rotary() {
+            continue;
+        }
+        let home = m.axes[a].home;
+        let near = unwrap_near(q[a], home, PI);
+        if (near - q[a]).abs() < 1e-12 {
+            continue;
+        }
+        let mut alt = q.to_vec();
+        alt[a] = near;
+        if norm(&alt) <= base.max(1e-9) {
+            q[a] = near;
+        }
+    }
+}
+
+/// Limits, unreachable points and branch jumps.
+fn feasibility(m: &Machine, targets: &[Target], t: &AxisTrack) -> Vec<Issue> {
+    let mut out: Vec<Issue> = Vec::new();
+    let mut note = |kind: &'static str, axis: Option<&str>, x: f64, excess: f64| {
+        if let Some(i) = out
+            .iter_mut()
+            .find(|i| i.kind == kind && i.axis.as_deref() == axis)
+        {
+            i.count += 1;
+            i.worst = i.worst.max(excess);
+        } else {
+            out.push(Issue {
+                kind,
+                axis: axis.map(str::to_string),
+                x,
+                count: 1,
+                worst: excess,
+            });
+        }
+    };
+    for (i, (q, tg)) in t.q.iter().zip(targets).enumerate() {
+        for (a, ax) in m.axes.iter().enumerate() {
+            let v = q[a];
+            let excess = (ax.min - v).max(v - ax.max);
+            if excess > 1e-9 {
+                note("limit", Some(&ax.name), tg.x, excess);
+            }
+        }
+        let res = t.residual_mm[i].max(ORIENTATION_SCALE * t.residual_orientation[i]);
+        if res > 1e-6 {
+            note("unreachable", None, tg.x, res);
+        }
+    }
+    // A jump: a step much longer than both neighbouring steps on the same axis
+    // (the solution flipped to another branch between two points).
+    for (a, ax) in m.axes.iter().enumerate() {
+        let floor = if ax.is_rotary() {
+            1f64.to_radians()
+        } else {
+            1.0
+        };
+        let steps: Vec<f64> = t.q.windows(2).map(|w| (w[1][a] - w[0][a]).abs()).collect();
+        for (k, &step) in steps.iter().enumerate() {
+            let before = if k > 0 { steps[k - 1] } else { 0.0 };
+            let after = steps.get(k + 1).copied().unwrap_or(0.0);
+            if step > floor && step > 20.0 * before.max(after) {
+                note("jump", Some(&ax.name), targets[k + 1].x, step);
+            }
+        }
+    }
+    out
+}

@@ -1,0 +1,22 @@
+//! Machine models of formcam: kinematic trees read from TOML machine files or
+//! URDF, forward kinematics for every link and key point, inverse kinematics of
+//! winders (eye trajectory → axes) and fibre-placement heads, feasibility checks
+//! and the length of band past each key point of the band path.
+//!
+//! A machine is a tree of links (the seed's hierarchical model, like LinuxCNC's
+//! vismach): each link hangs on its parent by a joint `pre * motion(q) * post`
+//! (Denavit–Hartenberg parameters or a plain origin), driven by an NC axis or
+//! fixed. One link carries the mandrel frame, one key point is the payout point.
+
+mod band;
+mod error;
+pub mod file;
+pub mod ik;
+mod machine;
+mod target;
+pub mod urdf;
+
+pub use band::band_passed;
+pub use error::MachineError;
+pub use machine::{Axis, Joint, JointKind, KeyPoint, Link, Machine, Roles, Shape, Visual};
+pub use target::{Target, placement_targets, winder_targets};

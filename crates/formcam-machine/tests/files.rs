@@ -1,0 +1,172 @@
+//! Machine files: forward kinematics of a known chain and one-line errors.
+
+#![allow(clippy::unwrap_used)]
+
+use formcam_machine::{Machine, MachineError};
+
+const HEAD: &str = r#"
+[machine]
+name = "test"
+kind = "winder"
+mandrel = "base"
+payout = "tip"
+"#;
+
+fn with_links(links: &str) -> Result<Machine, MachineError> {
+    Machine::from_toml(&format!(
+        "{HEAD}\n{links}\n[[point]]\nname = \"tip\"\nlink = \"base\"\n"
+    ))
+}
+
+fn error(links: &str) -> String {
+    let e = with_links(links).unwrap_err().to_string();
+    assert!(!e.contains('\n'), "one line: {e}");
+    e
+}
+
+#[test]
+fn a_planar_dh_arm_matches_its_closed_form() {
+    // Two revolute links of 300 and 200 mm in the xy plane.
+    let m = Machine::from_toml(
+        r#"
+[machine]
+name = "planar"
+kind = "winder"
+mandrel = "base"
+payout = "tip"
+
+[[link]]
+name = "base"
+
+[[link]]
+name = "l1"
+parent = "base"
+joint = "revolute"
+driven = true
+axis = "A"
+dh = { a = 300.0 }
+
+[[link]]
+name = "l2"
+parent = "l1"
+joint = "revolute"
+driven = true
+axis = "B"
+dh = { a = 200.0, d = 10.0 }
+
+[[point]]
+name = "tip"
+link = "l2"
+"#,
+    )
+    .unwrap();
+    for (a, b) in [(0.3, -1.1), (2.0, 0.7), (-2.5, 3.0)] {
+        let p = m.key_points(&[a, b])[0];
+        let x = 300.0 * f64::cos(a) + 200.0 * f64::cos(a + b);
+        let y = 300.0 * f64::sin(a) + 200.0 * f64::sin(a + b);
+        assert!((p.x - x).abs() < 1e-9 && (p.y - y).abs() < 1e-9 && (p.z - 10.0).abs() < 1e-9);
+    }
+    assert!(m.table().contains("revolute"));
+}
+
+#[test]
+fn a_prismatic_joint_with_an_origin_slides_along_its_direction() {
+    let m = with_links(
+        r#"
+[[link]]
+name = "base"
+[[link]]
+name = "slide"
+parent = "base"
+joint = "prismatic"
+driven = true
+axis = "X"
+origin = { xyz = [1.0, 2.0, 3.0], rpy_deg = [0.0, 0.0, 90.0] }
+direction = [1.0, 0.0, 0.0]
+min_mm = -10.0
+max_mm = 10.0
+"#,
+    )
+    .unwrap();
+    let poses = m.poses(&[5.0]);
+    let p = poses[1].translation.vector;
+    // The origin turns x onto y: the slide moves along world y.
+    assert!((p.x - 1.0).abs() < 1e-12 && (p.y - 7.0).abs() < 1e-12 && (p.z - 3.0).abs() < 1e-12);
+}
+
+#[test]
+fn bad_files_give_one_line_errors_naming_the_place_and_field() {
+    let base = "[[link]]\nname = \"base\"\n";
+    let cases = [
+        (
+            format!(
+                "{base}[[link]]\nname = \"a\"\nparent = \"b\"\n[[link]]\nname = \"b\"\nparent = \"a\"\n"
+            ),
+            "cycle",
+        ),
+        (
+            format!("{base}[[link]]\nname = \"a\"\nparent = \"nowhere\"\n"),
+            "link \"a\": parent: no link is named \"nowhere\"",
+        ),
+        (
+            format!(
+                "{base}[[link]]\nname = \"a\"\nparent = \"base\"\njoint = \"prismatic\"\ndriven = true\naxis = \"X\"\n\
+                 [[link]]\nname = \"b\"\nparent = \"a\"\njoint = \"revolute\"\ndriven = true\naxis = \"X\"\n"
+            ),
+            "link \"b\": axis: \"X\" drives two joints",
+        ),
+        (
+            format!(
+                "{base}[[link]]\nname = \"a\"\nparent = \"base\"\njoint = \"prismatic\"\ndriven = true\naxis = \"X\"\nmin_mm = 5.0\nmax_mm = 2.0\n"
+            ),
+            "link \"a\": min_mm: 5 > max_mm = 2",
+        ),
+        (
+            format!("{base}[[link]]\nname = \"a\"\nparent = \"base\"\njoint = \"spherical\"\n"),
+            "unknown variant `spherical`",
+        ),
+        (
+            format!(
+                "{base}[[link]]\nname = \"a\"\nparent = \"base\"\njoint = \"revolute\"\ndriven = true\naxis = \"A\"\nmin_mm = 0.0\n"
+            ),
+            "link \"a\": min_mm: a revolute joint takes degrees",
+        ),
+        (
+            format!("{base}[[link]]\nname = \"a\"\njoint = \"revolute\"\n"),
+            "link \"a\": parent: missing",
+        ),
+        (
+            format!(
+                "{base}[[link]]\nname = \"a\"\nparent = \"base\"\njoint = \"revolute\"\ndriven = true\n"
+            ),
+            "link \"a\": axis: missing",
+        ),
+        (
+            format!("{base}[[link]]\nname = \"base\"\n"),
+            "link \"base\": name: used by two links",
+        ),
+        (
+            format!("{base}[[link.visual]]\nshape = \"cone\"\n"),
+            "link \"base\": visual.shape: unknown shape \"cone\"",
+        ),
+    ];
+    for (links, want) in cases {
+        let e = error(&links);
+        assert!(e.contains(want), "want \"{want}\" in \"{e}\"");
+    }
+    // The [machine] table's references.
+    let e = Machine::from_toml(&HEAD.replace("\"tip\"", "\"nothing\"")).unwrap_err();
+    assert!(e.to_string().contains("link"), "{e}");
+    let text = format!(
+        "{}\n{base}[[point]]\nname = \"tip\"\nlink = \"base\"\n",
+        HEAD.replace("payout = \"tip\"", "payout = \"eye\"")
+    );
+    let e = Machine::from_toml(&text).unwrap_err().to_string();
+    assert!(
+        e.contains("[machine]: payout: no point is named \"eye\""),
+        "{e}"
+    );
+    // Syntax errors carry the line.
+    let e = Machine::from_toml("[machine]\nname = 3\n").unwrap_err();
+    assert!(matches!(e, MachineError::Syntax { line: 2, .. }), "{e:?}");
+}

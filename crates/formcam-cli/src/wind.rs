@@ -345,7 +345,7 @@ fn axes_csv(m: &Machine, targets: &[Target], track: &AxisTrack) -> Vec<u8> {
         let _ = write!(s, ",{}", a.name);
     }
     s.push('\n');
-    for (t, q) in targets.iter().zip(&track.q) {
+    for (t, q) in targets.iter().zip(track.rows()) {
         let _ = write!(s, "{}", t.x);
         for (a, v) in q.iter().enumerate() {
             let _ = write!(s, ",{}", nc_value(m, a, *v));
@@ -396,8 +396,8 @@ fn add_axes_summary(
         .iter()
         .enumerate()
         .map(|(a, ax)| {
-            let lo = t.q.iter().map(|q| nc_value(m, a, q[a])).fold(f64::INFINITY, f64::min);
-            let hi = t.q.iter().map(|q| nc_value(m, a, q[a])).fold(f64::NEG_INFINITY, f64::max);
+            let lo = t.rows().map(|q| nc_value(m, a, q[a])).fold(f64::INFINITY, f64::min);
+            let hi = t.rows().map(|q| nc_value(m, a, q[a])).fold(f64::NEG_INFINITY, f64::max);
             json!({ "axis": ax.name, "min": lo, "max": hi, "unit": if ax.is_rotary() { "deg" } else { "mm" } })
         })
         .collect();

@@ -20,13 +20,12 @@ pub fn band_passed(m: &Machine, targets: &[Target], track: &AxisTrack) -> Vec<Ve
         }
         out.iter().map(|d| d + t.free_length + t.x).collect()
     };
-    let Some((q0, t0)) = track.q.first().zip(targets.first()) else {
+    let Some((q0, t0)) = track.rows().next().zip(targets.first()) else {
         return Vec::new();
     };
     let start = run(q0, t0);
     track
-        .q
-        .iter()
+        .rows()
         .zip(targets)
         .map(|(q, t)| run(q, t).iter().zip(&start).map(|(a, b)| a - b).collect())
         .collect()

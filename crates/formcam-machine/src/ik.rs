@@ -56,8 +56,11 @@ pub struct Issue {
 pub struct AxisTrack {
     /// Which solver produced it.
     pub closed_form: bool,
-    /// Axis values per point (rad or mm, in the order of the machine's axes).
-    pub q: Vec<Vec<f64>>,
+    /// Axis values, point after point (rad or mm, in the order of the
+    /// machine's axes): see [`AxisTrack::rows`].
+    pub values: Vec<f64>,
+    /// Axes per point.
+    pub width: usize,
     /// Position residual per point, mm.
     pub residual_mm: Vec<f64>,
     /// Orientation residual per point (largest of the equations' cosines).
@@ -67,6 +70,16 @@ pub struct AxisTrack {
 }
 
 impl AxisTrack {
+    /// The axis values of each point.
+    pub fn rows(&self) -> std::slice::ChunksExact<'_, f64> {
+        self.values.chunks_exact(self.width.max(1))
+    }
+
+    /// The axis values of point `i`.
+    pub fn row(&self, i: usize) -> &[f64] {
+        &self.values[i * self.width..(i + 1) * self.width]
+    }
+
     /// Whether every axis stays within its limits.
     pub fn limits_ok(&self) -> bool {
         !self.issues.iter().any(|i| i.kind == "limit")
@@ -173,9 +186,32 @@ fn moves(m: &Machine) -> Vec<(bool, bool)> {
         .collect()
 }
 
+/// At most six residuals, without allocating.
+#[derive(Debug, Clone, Copy)]
+struct Residuals {
+    v: [f64; 6],
+    n: usize,
+}
+
+impl Residuals {
+    fn push(&mut self, x: f64) {
+        if self.n < self.v.len() {
+            self.v[self.n] = x;
+            self.n += 1;
+        }
+    }
+}
+
+impl std::ops::Deref for Residuals {
+    type Target = [f64];
+    fn deref(&self) -> &[f64] {
+        &self.v[..self.n]
+    }
+}
+
 /// Residuals and, when asked, their Jacobian columns for the unknowns.
 struct Evaluated {
-    r: Vec<f64>,
+    r: Residuals,
     jac: Option<DMatrix<f64>>,
 }
 
@@ -227,7 +263,17 @@ impl<'a> Equations<'a> {
         let press = roles.head_normal.map(|a| head.rotation * a.into_inner());
         let side = normal.cross(&band);
         let s = ORIENTATION_SCALE;
-        let mut r = vec![p.x - target.x, p.y - target.y, p.z - target.z];
+        let mut r = Residuals {
+            v: [
+                p.x - target.x,
+                p.y - target.y,
+                p.z - target.z,
+                0.0,
+                0.0,
+                0.0,
+            ],
+            n: 3,
+        };
         let rows = self.orientation_rows();
         match roles.kind {
             MachineKind::Winder => {
@@ -335,7 +381,7 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Equations<'_> {
 
     fn residuals(&self) -> Option<DVector<f64>> {
         let e = self.eval(false);
-        Some(DVector::from_vec(e.r))
+        Some(DVector::from_column_slice(&e.r))
     }
 
     fn jacobian(&self) -> Option<DMatrix<f64>> {
@@ -499,7 +545,8 @@ pub fn solve(m: &Machine, targets: &[Target], method: IkMethod) -> Result<AxisTr
     let mut prev = q.clone();
     let mut track = AxisTrack {
         closed_form: lathe.is_some(),
-        q: Vec::with_capacity(targets.len()),
+        values: Vec::with_capacity(targets.len() * m.axes.len()),
+        width: m.axes.len(),
         residual_mm: Vec::with_capacity(targets.len()),
         residual_orientation: Vec::with_capacity(targets.len()),
         issues: Vec::new(),
@@ -508,10 +555,6 @@ pub fn solve(m: &Machine, targets: &[Target], method: IkMethod) -> Result<AxisTr
     let moves = moves(m);
     let equations = |t, q: &[f64]| Equations::new(m, t, &unknowns, &moves, q);
     let mut before = q.clone();
-    let Some(t0) = targets.first() else {
-        return Ok(track);
-    };
-    let mut check = equations(t0, &q);
     for (i, t) in targets.iter().enumerate() {
         let first = i == 0;
         if let Some(l) = &lathe {
@@ -544,20 +587,63 @@ pub fn solve(m: &Machine, targets: &[Target], method: IkMethod) -> Result<AxisTr
                 }
             }
         }
-        check.t = t;
-        check.q.copy_from_slice(&q);
-        let e = check.eval(false);
-        let pos = (e.r[0] * e.r[0] + e.r[1] * e.r[1] + e.r[2] * e.r[2]).sqrt();
-        let ori = e.r[3..]
-            .iter()
-            .map(|v| (v / ORIENTATION_SCALE).abs())
-            .fold(0.0, f64::max);
-        track.residual_mm.push(pos);
-        track.residual_orientation.push(ori);
-        track.q.push(q.clone());
+        track.values.extend_from_slice(&q);
         before.clone_from(&prev);
         prev.clone_from(&q);
     }
+    // The residuals of every point by forward kinematics, in runs (one per
+    // thread on long trajectories).
+    let width = m.axes.len().max(1);
+    let threads = std::thread::available_parallelism()
+        .map_or(1, usize::from)
+        .min(targets.len() / 20_000)
+        .clamp(1, 16);
+    let per = targets.len().div_ceil(threads);
+    let run = |ts: &[Target], values: &[f64]| -> Vec<(f64, f64)> {
+        let Some(t0) = ts.first() else {
+            return Vec::new();
+        };
+        let mut check =
+            Equations::new(m, t0, &unknowns, &moves, &values[..width.min(values.len())]);
+        ts.iter()
+            .zip(values.chunks_exact(width))
+            .map(|(t, q)| {
+                check.t = t;
+                check.q.copy_from_slice(q);
+                let e = check.eval(false);
+                let pos = (e.r[0] * e.r[0] + e.r[1] * e.r[1] + e.r[2] * e.r[2]).sqrt();
+                let ori = e.r[3..]
+                    .iter()
+                    .map(|v| (v / ORIENTATION_SCALE).abs())
+                    .fold(0.0, f64::max);
+                (pos, ori)
+            })
+            .collect()
+    };
+    let residuals: Vec<(f64, f64)> = if threads == 1 || m.axes.is_empty() {
+        run(targets, &track.values)
+    } else {
+        std::thread::scope(|s| {
+            let handles: Vec<_> = targets
+                .chunks(per)
+                .zip(track.values.chunks(per * width))
+                .map(|(ts, vs)| {
+                    let run = &run;
+                    s.spawn(move || run(ts, vs))
+                })
+                .collect();
+            handles
+                .into_iter()
+                .flat_map(|h| h.join().unwrap_or_default())
+                .collect()
+        })
+    };
+    if residuals.len() != targets.len() {
+        return Err(MachineError::Ik(
+            "a worker thread checking the residuals failed".into(),
+        ));
+    }
+    (track.residual_mm, track.residual_orientation) = residuals.into_iter().unzip();
     track.issues = feasibility(m, targets, &track);
     Ok(track)
 }
@@ -574,7 +660,7 @@ fn newton(mut eq: Equations<'_>) -> Option<Vec<f64>> {
             return Some(eq.q);
         }
         let j = e.jac?;
-        let r = DVector::from_vec(e.r);
+        let r = DVector::from_column_slice(&e.r);
         let step = j.svd(true, true).solve(&(-r), 1e-12).ok()?;
         let mut q = eq.q.clone();
         for (k, &a) in eq.unknowns.iter().enumerate() {
@@ -639,7 +725,7 @@ fn feasibility(m: &Machine, targets: &[Target], t: &AxisTrack) -> Vec<Issue> {
             });
         }
     };
-    for (i, (q, tg)) in t.q.iter().zip(targets).enumerate() {
+    for (i, (q, tg)) in t.rows().zip(targets).enumerate() {
         for (a, ax) in m.axes.iter().enumerate() {
             let v = q[a];
             let excess = (ax.min - v).max(v - ax.max);
@@ -660,7 +746,8 @@ fn feasibility(m: &Machine, targets: &[Target], t: &AxisTrack) -> Vec<Issue> {
         } else {
             1.0
         };
-        let steps: Vec<f64> = t.q.windows(2).map(|w| (w[1][a] - w[0][a]).abs()).collect();
+        let col: Vec<f64> = t.rows().map(|q| q[a]).collect();
+        let steps: Vec<f64> = col.windows(2).map(|w| (w[1] - w[0]).abs()).collect();
         for (k, &step) in steps.iter().enumerate() {
             let before = if k > 0 { steps[k - 1] } else { 0.0 };
             let after = steps.get(k + 1).copied().unwrap_or(0.0);

@@ -36,6 +36,10 @@ pub struct Joint {
     pub axis: Option<usize>,
     /// The value of an undriven joint (rad or mm).
     pub value: f64,
+    /// Whether `post` is the identity (a plain origin), so its product is skipped.
+    plain: bool,
+    /// Whether `pre` is the identity (DH parameters).
+    dh: bool,
 }
 
 impl Joint {
@@ -52,11 +56,10 @@ impl Joint {
             ),
             JointKind::Fixed => return self.pre * self.post,
         };
-        // One side is the identity for both kinds of file input (DH: `pre`;
-        // a plain origin: `post`): skip its product.
-        if self.post == Isometry3::identity() {
+        // One side is the identity (DH: `pre`; a plain origin: `post`).
+        if self.plain {
             self.pre * motion
-        } else if self.pre == Isometry3::identity() {
+        } else if self.dh {
             motion * self.post
         } else {
             self.pre * motion * self.post
@@ -473,6 +476,8 @@ fn joint(l: &LinkSpec, place: &str) -> Result<(Joint, Option<Axis>), MachineErro
             post,
             axis: None,
             value,
+            plain: post == Isometry3::identity(),
+            dh: pre == Isometry3::identity(),
         },
         axis,
     ))

@@ -70,7 +70,7 @@ fn payout_in_mandrel(m: &Machine, q: &[f64]) -> nalgebra::Point3<f64> {
 fn round_trip(m: &Machine, targets: &[Target], method: IkMethod) -> f64 {
     let track = solve(m, targets, method).unwrap();
     let mut worst: f64 = 0.0;
-    for (q, t) in track.q.iter().zip(targets) {
+    for (q, t) in track.rows().zip(targets) {
         worst = worst.max((payout_in_mandrel(m, q) - t.point).norm());
     }
     worst
@@ -129,7 +129,7 @@ fn round_trip_on_the_placement_arm() {
     let e = round_trip(&m, &targets, IkMethod::Auto);
     assert!(e < 1e-9, "placement: {e}");
     // The roller presses along the inward normal with its axis across the path.
-    for (q, t) in track.q.iter().zip(&targets) {
+    for (q, t) in track.rows().zip(&targets) {
         let poses = m.poses(q);
         let head = poses[m.points[m.roles.payout].link];
         let mandrel = poses[m.roles.mandrel];
@@ -164,7 +164,7 @@ fn closed_forms_equal_the_solver() {
         let closed = solve(&m, &targets, IkMethod::ClosedForm).unwrap();
         let solver = solve(&m, &targets, IkMethod::Solver).unwrap();
         assert!(closed.closed_form && !solver.closed_form);
-        for (a, b) in closed.q.iter().zip(&solver.q) {
+        for (a, b) in closed.rows().zip(solver.rows()) {
             for (x, y) in a.iter().zip(b) {
                 assert!((x - y).abs() < 1e-9, "{name}: {a:?} vs {b:?}");
             }
@@ -191,8 +191,8 @@ fn a_limit_is_reported_at_the_first_point_beyond_it() {
     let targets = vessel_targets(EyeMode::PullSpeed, 160.0, 2001);
     let track = solve(&m, &targets, IkMethod::Auto).unwrap();
     let x = m.axis("X").unwrap();
-    let first = track.q.iter().position(|q| q[x] > 300.0).unwrap();
-    let count = track.q.iter().filter(|q| q[x] > 300.0 + 1e-9).count();
+    let first = track.rows().position(|q| q[x] > 300.0).unwrap();
+    let count = track.rows().filter(|q| q[x] > 300.0 + 1e-9).count();
     let issue = track
         .issues
         .iter()

@@ -39,7 +39,8 @@ pub enum IkMethod {
 /// A problem found at some points.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Issue {
-    /// `limit`, `unreachable`, `jump`.
+    /// `limit`, `unreachable`, `jump`, `clearance` (the eye closer to the mandrel
+    /// than the clearance).
     pub kind: &'static str,
     /// The axis concerned (NC address), if one.
     pub axis: Option<String>,
@@ -705,7 +706,7 @@ fn nearest_home_branch(m: &Machine, t: &Target, unknowns: &[usize], q: &mut [f64
     }
 }
 
-/// Limits, unreachable points and branch jumps.
+/// Limits, unreachable points, the eye's clearance and branch jumps.
 fn feasibility(m: &Machine, targets: &[Target], t: &AxisTrack) -> Vec<Issue> {
     let mut out: Vec<Issue> = Vec::new();
     let mut note = |kind: &'static str, axis: Option<&str>, x: f64, excess: f64| {
@@ -736,6 +737,9 @@ fn feasibility(m: &Machine, targets: &[Target], t: &AxisTrack) -> Vec<Issue> {
         let res = t.residual_mm[i].max(ORIENTATION_SCALE * t.residual_orientation[i]);
         if res > 1e-6 {
             note("unreachable", None, tg.x, res);
+        }
+        if tg.clearance_margin < -1e-6 {
+            note("clearance", None, tg.x, -tg.clearance_margin);
         }
     }
     // A jump: a step much longer than both neighbouring steps on the same axis

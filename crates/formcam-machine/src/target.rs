@@ -23,6 +23,9 @@ pub struct Target {
     pub normal: Unit<Vector3<f64>>,
     /// Free length of band between the path point and the eye, mm (0 for placement).
     pub free_length: f64,
+    /// The eye's margin over the clearance zone round the mandrel, mm (negative:
+    /// closer than the clearance; infinite for placement).
+    pub clearance_margin: f64,
 }
 
 /// The path point, its tangent `tau` (eqs. 8–9) and the outward normal, in the
@@ -55,6 +58,7 @@ pub fn winder_targets<M: Meridian>(m: &M, eye: &EyeTrajectory) -> Vec<Target> {
                 band: Unit::new_normalize(tau),
                 normal: Unit::new_normalize(normal),
                 free_length: p.l,
+                clearance_margin: p.margin,
             }
         })
         .collect()
@@ -79,6 +83,7 @@ pub fn placement_targets<M: Meridian>(
                 band: Unit::new_normalize(tau),
                 normal: Unit::new_normalize(normal),
                 free_length: 0.0,
+                clearance_margin: f64::INFINITY,
             }
         })
         .collect()

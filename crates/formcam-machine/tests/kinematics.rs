@@ -217,3 +217,36 @@ fn an_unreachable_eye_is_reported() {
     assert_eq!(issue.count, targets.len());
     assert!((track.max_residual_mm() - 50.0).abs() < 1e-9);
 }
+
+#[test]
+fn an_eye_too_close_to_the_mandrel_is_reported() {
+    // An eye line at 125 mm keeps only 25 mm from the 100 mm cylinder: less than
+    // the clearance of 30 mm asked for.
+    let v = vessel();
+    let targets = eye_targets(
+        &v,
+        Ends::Poles {
+            start: 30.0,
+            end: 30.0,
+        },
+        EyeSpec {
+            mode: EyeMode::AxisParallel,
+            radius: Some(125.0),
+            clearance: 30.0,
+            l_max: 2000.0,
+            samples: 1001,
+            ..EyeSpec::default()
+        },
+    );
+    let m = machine("winder-4axis.toml");
+    let track = solve(&m, &targets, IkMethod::Auto).unwrap();
+    let close = targets
+        .iter()
+        .filter(|t| t.clearance_margin < -1e-6)
+        .count();
+    let issue = track.issues.iter().find(|i| i.kind == "clearance").unwrap();
+    assert!(close > 0);
+    assert_eq!(issue.count, close);
+    let first = targets.iter().find(|t| t.clearance_margin < -1e-6).unwrap();
+    assert_eq!(issue.x, first.x);
+}

@@ -4,6 +4,7 @@
 mod machine;
 mod output;
 mod plot;
+mod program;
 mod wind;
 
 use std::path::PathBuf;
@@ -21,10 +22,18 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Filament winding.
+    /// Filament winding: `formcam wind JOB -o OUT` writes the whole program;
+    /// the subcommands stop after a stage.
+    #[command(args_conflicts_with_subcommands = true)]
     Wind {
         #[command(subcommand)]
-        what: WindCommand,
+        what: Option<WindCommand>,
+        /// The job file (TOML with [mandrel], [winding], [eye], [machine], [post]).
+        job: Option<PathBuf>,
+        /// Output folder (program.<ext>, blocks.csv, axes.csv, the eye and path
+        /// outputs, summary.json).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
     },
     /// Machine files: the chain as a table, forward kinematics.
     Machine {
@@ -97,13 +106,25 @@ pub struct CliError(pub String);
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Wind { what } => {
-            let (job, output, stage) = match what {
-                WindCommand::Path { job, output } => (job, output, wind::Stage::Path),
-                WindCommand::Eye { job, output } => (job, output, wind::Stage::Eye),
-                WindCommand::Axes { job, output } => (job, output, wind::Stage::Axes),
+        Command::Wind {
+            what,
+            job: whole,
+            output: whole_out,
+        } => {
+            let picked = match what {
+                Some(WindCommand::Path { job, output }) => Ok((job, output, wind::Stage::Path)),
+                Some(WindCommand::Eye { job, output }) => Ok((job, output, wind::Stage::Eye)),
+                Some(WindCommand::Axes { job, output }) => Ok((job, output, wind::Stage::Axes)),
+                None => match (whole, whole_out) {
+                    (Some(job), Some(output)) => Ok((job, output, wind::Stage::Program)),
+                    _ => Err(CliError(
+                        "wind: give a job and -o OUTDIR (or a subcommand: path, eye, axes)".into(),
+                    )),
+                },
             };
-            wind::run(&job, &output, stage).map(|s| println!("{s}"))
+            picked.and_then(|(job, output, stage)| {
+                wind::run(&job, &output, stage).map(|s| println!("{s}"))
+            })
         }
         Command::Machine {
             what: MachineCommand::Show { machine },

@@ -9,7 +9,7 @@ use crate::CliError;
 
 /// Writes all `files` (name, contents) into `dir`, creating it if needed.
 /// Nothing is renamed into place until every temporary file is complete.
-pub fn write_all(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<(), CliError> {
+pub fn write_all<S: AsRef<str>>(dir: &Path, files: &[(S, Vec<u8>)]) -> Result<(), CliError> {
     fs::create_dir_all(dir).map_err(|e| {
         CliError(format!(
             "{}: cannot create the output folder: {e}",
@@ -18,6 +18,7 @@ pub fn write_all(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<(), CliError> 
     })?;
     let mut temps = Vec::new();
     for (name, data) in files {
+        let name = name.as_ref();
         let tmp = dir.join(format!(".{name}.tmp"));
         let res = fs::File::create(&tmp).and_then(|mut f| {
             f.write_all(data)?;
@@ -36,6 +37,7 @@ pub fn write_all(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<(), CliError> 
         temps.push(tmp);
     }
     for ((name, _), tmp) in files.iter().zip(&temps) {
+        let name = name.as_ref();
         fs::rename(tmp, dir.join(name))
             .map_err(|e| CliError(format!("{}: cannot write: {e}", dir.join(name).display())))?;
     }

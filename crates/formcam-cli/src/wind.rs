@@ -17,6 +17,7 @@ use serde_json::json;
 
 use crate::CliError;
 use crate::output::write_all;
+use crate::program::{MotionJob, PostJob};
 
 /// A job file. Tables of other processes are kept for their commands.
 #[derive(Debug, Deserialize)]
@@ -25,6 +26,8 @@ struct Job {
     winding: Option<WindingSpec>,
     eye: Option<EyeJob>,
     machine: Option<MachineJob>,
+    motion: Option<MotionJob>,
+    post: Option<PostJob>,
     #[serde(flatten)]
     _other: BTreeMap<String, toml::Value>,
 }
@@ -62,6 +65,8 @@ struct Planned {
     layer: Layer,
     eye: Option<EyeSpec>,
     machine: Option<(PathBuf, IkMethod)>,
+    motion: MotionJob,
+    post: PostJob,
 }
 
 /// Plans the layer of a job; errors name the job file and the field.
@@ -119,6 +124,8 @@ fn plan(job_path: &Path) -> Result<Planned, CliError> {
         layer,
         eye,
         machine,
+        motion: job.motion.unwrap_or_default(),
+        post: job.post.unwrap_or_default(),
     })
 }
 
@@ -175,6 +182,8 @@ pub enum Stage {
     Eye,
     /// ... and the machine's axes.
     Axes,
+    /// ... and the NC program (blocks, times, post-processor).
+    Program,
 }
 
 /// `formcam wind path|eye|axes JOB -o OUT`; returns a one-line summary.
@@ -185,6 +194,8 @@ pub fn run(job: &Path, out: &Path, stage: Stage) -> Result<String, CliError> {
         layer,
         eye,
         machine,
+        motion,
+        post,
     } = plan(job)?;
     let name = job
         .file_name()
@@ -192,15 +203,16 @@ pub fn run(job: &Path, out: &Path, stage: Stage) -> Result<String, CliError> {
         .unwrap_or_default();
     let title = format!("{name}: {} mandrel, one pass", mandrel.kind());
     let mut summary = summary_value(job, mandrel.kind(), &layer);
-    let mut files = vec![
-        ("path.csv", path_csv(&layer)),
+    let mut files: Vec<(String, Vec<u8>)> = vec![
+        ("path.csv".to_string(), path_csv(&layer)),
         (
-            "path.svg",
+            "path.svg".to_string(),
             crate::plot::layer_svg(&title, &mandrel, &layer)?,
         ),
     ];
     let mut eye_line = String::new();
-    let machine = if stage == Stage::Axes {
+    let mut program_line = String::new();
+    let machine = if stage >= Stage::Axes {
         let (file, method) = machine
             .ok_or_else(|| CliError(format!("{}: [machine]: missing table", job.display())))?;
         Some((crate::machine::load(&file)?, file, method))
@@ -218,9 +230,9 @@ pub fn run(job: &Path, out: &Path, stage: Stage) -> Result<String, CliError> {
         let t = eye_trajectory(&mandrel, &layer, spec)
             .map_err(|e| CliError(format!("{}: {e}", job.display())))?;
         add_eye_summary(&mut summary, &t);
-        files.push(("eye.csv", eye_csv(&t)));
+        files.push(("eye.csv".to_string(), eye_csv(&t)));
         files.push((
-            "eye.svg",
+            "eye.svg".to_string(),
             crate::plot::eye_svg(&format!("{name}: payout eye over one circuit"), &t)?,
         ));
         eye_line = format!(
@@ -253,11 +265,24 @@ pub fn run(job: &Path, out: &Path, stage: Stage) -> Result<String, CliError> {
         let track = solve(m, &targets, *method)
             .map_err(|e| CliError(format!("{}: {}: {e}", job.display(), file.display())))?;
         let passed = band_passed(m, &targets, &track);
-        files.push(("axes.csv", axes_csv(m, &targets, &track)));
+        files.push(("axes.csv".to_string(), axes_csv(m, &targets, &track)));
         if !m.roles.band_path.is_empty() {
-            files.push(("band.csv", band_csv(m, &targets, &passed)));
+            files.push(("band.csv".to_string(), band_csv(m, &targets, &passed)));
         }
         add_axes_summary(&mut summary, m, file, &track, passed.last());
+        if stage == Stage::Program {
+            let stem = job
+                .file_stem()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            let built = crate::program::build(job, &stem, m, &targets, &track, &motion, &post)?;
+            files.extend(built.files);
+            if let Some(obj) = summary.as_object_mut() {
+                obj.extend(built.summary);
+                obj.insert("layers".into(), json!(1));
+            }
+            program_line = built.line;
+        }
         let _ = write!(
             eye_line,
             "; axes {} on {} ({}): limits {}, IK residual {:.2e} mm{}",
@@ -291,11 +316,11 @@ pub fn run(job: &Path, out: &Path, stage: Stage) -> Result<String, CliError> {
     }
     let json =
         serde_json::to_vec_pretty(&summary).map_err(|e| CliError(format!("summary.json: {e}")))?;
-    files.push(("summary.json", json));
+    files.push(("summary.json".to_string(), json));
     write_all(out, &files)?;
     let mut line = format!(
         "{}: {} path, mu {:.5}, alpha at equator {:.3} deg, {} circuits (pattern {} skip {}), dwell {:.2} deg, \
-         fibre {:.1} m{eye_line}, {:.1} ms -> {}",
+         fibre {:.1} m{eye_line}{program_line}, {:.1} ms -> {}",
         job.display(),
         serde_json::to_value(layer.pass.method)
             .ok()
@@ -475,7 +500,9 @@ pub fn run_demo(examples: &Path, out: &Path) -> Result<(), CliError> {
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
         let j = read_job(job)?;
-        let stage = if j.machine.is_some() {
+        let stage = if j.machine.is_some() && j.post.is_some() {
+            Stage::Program
+        } else if j.machine.is_some() {
             Stage::Axes
         } else if j.eye.is_some() {
             Stage::Eye

@@ -426,3 +426,63 @@ fn bad_machines_fail_with_one_line_naming_the_file_and_link() {
     let err = fails_in("axes", "missing-machine", &job, &[]);
     assert!(err.contains("no-such-machine.toml"), "{err}");
 }
+
+#[test]
+fn wind_writes_the_whole_program() {
+    let out = succeeds("program", &["wind", "vessel-program-840d.toml"]);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    for key in [
+        "blocks",
+        "program_time_s",
+        "program_time_pairwise_s",
+        "program_time_global_s",
+        "layers",
+        "fibre_length_mm",
+    ] {
+        assert!(summary.get(key).is_some(), "summary.json lacks {key}");
+    }
+    let global = summary["program_time_global_s"].as_f64().unwrap();
+    let pairwise = summary["program_time_pairwise_s"].as_f64().unwrap();
+    assert!(global <= pairwise * (1.0 + 1e-9));
+    let blocks = summary["blocks"].as_u64().unwrap() as usize;
+    let program = std::fs::read_to_string(out.join("program.mpf")).unwrap();
+    assert!(program.contains("G90 G94 G71") && program.trim_end().ends_with("M30"));
+    assert_eq!(
+        program.lines().filter(|l| l.contains(" G1 ")).count(),
+        blocks
+    );
+    let csv = std::fs::read_to_string(out.join("blocks.csv")).unwrap();
+    assert!(csv.starts_with("block,t,"));
+    assert_eq!(csv.lines().count(), blocks + 1);
+}
+
+#[test]
+fn a_program_beyond_a_limit_is_refused() {
+    let machine = std::fs::read_to_string(machines().join("winder-4axis.toml"))
+        .unwrap()
+        .replace("max_mm = 3000.0", "max_mm = 100.0");
+    let job = std::fs::read_to_string(examples().join("vessel-program-840d.toml"))
+        .unwrap()
+        .replace("../machines/winder-4axis.toml", "m.toml");
+    let dir = scratch("limit");
+    std::fs::write(dir.join("m.toml"), machine).unwrap();
+    let path = dir.join("job.toml");
+    std::fs::write(&path, job).unwrap();
+    let out = dir.join("out");
+    let st = formcam()
+        .arg("wind")
+        .arg(&path)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(!st.status.success());
+    assert!(!out.exists(), "a refused program wrote output");
+    let err = String::from_utf8_lossy(&st.stderr).trim_end().to_string();
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("job.toml") && err.contains("axis X beyond its limit"),
+        "{err}"
+    );
+}

@@ -1,0 +1,21 @@
+//! Motion: axis trajectories cut into NC blocks, and the blocks' times.
+//!
+//! * [`fit_blocks`] — the fewest straight blocks (greedy farthest reach) that keep
+//!   every axis, and optionally the payout point's position, within tolerance.
+//! * [`preliminary_times`] — eq. 17: each block as fast as its slowest axis
+//!   allows, but no shorter than the controller's least block time `tau`.
+//! * [`pairwise`] — eq. 18, the seed's method: neighbouring blocks slowed pair by
+//!   pair (`t_i = t*_i / mu_i`) until every velocity jump is within its limit.
+//! * [`global`] — the same problem over all blocks at once (convex): by monotone
+//!   sweeps when no axis reverses between neighbours (the feasible set then has a
+//!   greatest element), otherwise as a second-order-cone program (Clarabel).
+
+mod blocks;
+mod error;
+mod times;
+
+pub use blocks::{Deviation, Tolerance, fit_blocks};
+pub use error::MotionError;
+pub use times::{
+    AxisLimits, Timing, check_timing, deltas, global, global_by_cone, pairwise, preliminary_times,
+};

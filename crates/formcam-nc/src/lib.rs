@@ -1,0 +1,37 @@
+//! NC programs of formcam: the program model, post-processors and readers.
+//!
+//! A [`Program`] is a list of motion [`Block`]s on named NC axes
+//! ([`AxisSpec`]): every block holds the absolute end value of every axis in
+//! NC units (mm, degrees for rotary axes), its [`Motion`] (rapid or linear)
+//! and its [`Feed`] (per minute, or inverse time as a block time).
+//!
+//! * [`write()`] writes a program in one of the built-in [`Dialect`]s: APT
+//!   CLDATA, Sinumerik 840D, ISO/Fanuc, LinuxCNC and Marlin X/A/B
+//!   (FiberPath-style winders).
+//! * [`write_template`] writes it with a user [`Template`] read from TOML.
+//! * [`read_gcode`] and [`read_cldata`] read programs back.
+//!
+//! ```
+//! use formcam_nc::{AxisSpec, Block, Dialect, Feed, Program, write};
+//!
+//! let mut p = Program::new("DEMO", vec![AxisSpec::linear("X"), AxisSpec::rotary("A")]);
+//! p.blocks.push(Block::rapid(vec![0.0, 0.0]));
+//! p.blocks.push(Block::linear(vec![100.0, 360.0], Feed::InverseTime(2.0)));
+//! let mut out = String::new();
+//! write(&p, Dialect::LinuxCnc, &mut out)?;
+//! assert!(out.contains("G93 G1 X100 A360 F30"));
+//! # Ok::<(), formcam_nc::NcError>(())
+//! ```
+
+mod error;
+mod num;
+pub mod post;
+mod program;
+pub mod read;
+pub mod template;
+
+pub use error::NcError;
+pub use post::{Dialect, write};
+pub use program::{AxisSpec, Block, Feed, Motion, Program};
+pub use read::{read_cldata, read_gcode};
+pub use template::{Template, write_template};

@@ -1,0 +1,265 @@
+//! The output buffer of the writers and a small fixed-decimal number
+//! formatter: `decimals` places, trailing zeros stripped, never `-0`.
+
+use crate::NcError;
+
+/// Decimals for mm values.
+pub(crate) const MM: u32 = 3;
+/// Decimals for degree values.
+pub(crate) const DEG: u32 = 4;
+/// Decimals for per-minute feeds given by the program.
+pub(crate) const FEED: u32 = 1;
+/// Decimals for computed feeds (inverse-time F, feeds converted from block times).
+pub(crate) const FEED_FINE: u32 = 3;
+
+const POW10: [f64; 10] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9];
+
+/// Bytes collected on the stack before they go to the vector in one copy.
+const CAP: usize = 4096;
+/// The most bytes a number takes (sign, 19 digits, point, 9 decimals, slack).
+const NUM_MAX: usize = 40;
+
+/// The bytes of a program being written. Small pieces (words, numbers) are
+/// gathered in a stack buffer and moved to the vector a few kilobytes at a
+/// time, which is much faster than many tiny `memcpy`s; the vector is checked
+/// as UTF-8 once at the end ([`with_out`]).
+pub(crate) struct Out {
+    vec: Vec<u8>,
+    buf: [u8; CAP],
+    len: usize,
+}
+
+impl Out {
+    fn new(vec: Vec<u8>) -> Self {
+        Self {
+            vec,
+            buf: [0; CAP],
+            len: 0,
+        }
+    }
+
+    /// Moves the buffered bytes to the vector.
+    #[inline]
+    fn flush(&mut self) {
+        self.vec.extend_from_slice(&self.buf[..self.len]);
+        self.len = 0;
+    }
+
+    /// Makes room for `n` buffered bytes (`n <= CAP`).
+    #[inline]
+    fn room(&mut self, n: usize) {
+        if self.len + n > CAP {
+            self.flush();
+        }
+    }
+
+    /// Reserves room in the vector for `n` more bytes.
+    pub(crate) fn reserve(&mut self, n: usize) {
+        self.vec.reserve(n + self.len);
+    }
+
+    /// Appends a string.
+    #[inline]
+    pub(crate) fn s(&mut self, s: &str) {
+        let b = s.as_bytes();
+        if b.len() > 64 {
+            self.flush();
+            self.vec.extend_from_slice(b);
+            return;
+        }
+        self.room(b.len());
+        for (d, x) in self.buf[self.len..self.len + b.len()].iter_mut().zip(b) {
+            *d = *x;
+        }
+        self.len += b.len();
+    }
+
+    /// Appends one ASCII byte.
+    #[inline]
+    pub(crate) fn byte(&mut self, b: u8) {
+        self.room(1);
+        self.buf[self.len] = b;
+        self.len += 1;
+    }
+
+    /// Appends a character.
+    #[inline]
+    pub(crate) fn c(&mut self, c: char) {
+        if c.is_ascii() {
+            self.byte(c as u8);
+        } else {
+            let mut b = [0u8; 4];
+            self.s(c.encode_utf8(&mut b));
+        }
+    }
+
+    /// Takes the bytes out, flushed.
+    fn finish(mut self) -> Vec<u8> {
+        self.flush();
+        self.vec
+    }
+}
+
+/// Runs `f` on the bytes of `out` and makes them a `String` again; on an error
+/// `out` is left as it was.
+pub(crate) fn with_out(
+    out: &mut String,
+    f: impl FnOnce(&mut Out) -> Result<(), NcError>,
+) -> Result<(), NcError> {
+    let start = out.len();
+    let mut o = Out::new(std::mem::take(out).into_bytes());
+    let r = f(&mut o);
+    let mut bytes = o.finish();
+    if r.is_err() {
+        bytes.truncate(start);
+    }
+    // Only whole `&str`s and ASCII bytes were pushed: this is valid UTF-8.
+    *out = match String::from_utf8(bytes) {
+        Ok(s) => s,
+        Err(e) => String::from_utf8_lossy(e.as_bytes()).into_owned(),
+    };
+    r
+}
+
+/// `v` scaled by `10^decimals` and rounded (half away from zero); `None`
+/// when it does not fit an `i64` comfortably (or is not finite).
+#[inline]
+pub(crate) fn scaled(v: f64, decimals: u32) -> Option<i64> {
+    let s = v * POW10[decimals.min(9) as usize];
+    // `as` truncates towards zero; adding ±0.5 first rounds half away from zero
+    // without a call to `round` (not an instruction on baseline x86-64).
+    (s.abs() < 9.0e18).then(|| (s + 0.5f64.copysign(s)) as i64)
+}
+
+/// Writes `v` with at most `decimals` places. `keep_point` writes a decimal
+/// point even for whole numbers (`12.`), as Fanuc-style controls want.
+#[inline]
+pub(crate) fn push(out: &mut Out, v: f64, decimals: u32, keep_point: bool) {
+    match scaled(v, decimals) {
+        Some(s) => push_scaled(out, s, decimals, keep_point),
+        None => out.s(&format!("{v:.0}")),
+    }
+}
+
+/// Writes the scaled integer `s` (value `s / 10^decimals`), digits in place.
+#[inline]
+pub(crate) fn push_scaled(out: &mut Out, s: i64, decimals: u32, keep_point: bool) {
+    let mut u = s.unsigned_abs();
+    let mut d = decimals.min(9) as usize;
+    while d > 0 && u.is_multiple_of(10) {
+        u /= 10;
+        d -= 1;
+    }
+    let digits = if u == 0 { 1 } else { u.ilog10() as usize + 1 };
+    let int_digits = digits.saturating_sub(d).max(1);
+    let total = usize::from(s < 0)
+        + int_digits
+        + if d > 0 {
+            1 + d
+        } else {
+            usize::from(keep_point)
+        };
+    out.room(NUM_MAX);
+    let start = out.len;
+    let buf = &mut out.buf[start..start + total];
+    let mut p = total;
+    if d == 0 && keep_point {
+        p -= 1;
+        buf[p] = b'.';
+    }
+    if d > 0 {
+        for _ in 0..d {
+            p -= 1;
+            buf[p] = b'0' + (u % 10) as u8;
+            u /= 10;
+        }
+        p -= 1;
+        buf[p] = b'.';
+    }
+    loop {
+        p -= 1;
+        buf[p] = b'0' + (u % 10) as u8;
+        u /= 10;
+        if u == 0 {
+            break;
+        }
+    }
+    if s < 0 {
+        p -= 1;
+        buf[p] = b'-';
+    }
+    debug_assert_eq!(p, 0);
+    out.len += total;
+}
+
+/// Writes an unsigned integer.
+#[inline]
+pub(crate) fn push_uint(out: &mut Out, n: u64) {
+    push_scaled(out, n.min(i64::MAX as u64) as i64, 0, false);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn f(v: f64, d: u32, k: bool) -> String {
+        let mut s = Out::new(Vec::new());
+        push(&mut s, v, d, k);
+        String::from_utf8(s.finish()).unwrap_or_default()
+    }
+
+    #[test]
+    fn formats() {
+        assert_eq!(f(12.5, 3, false), "12.5");
+        assert_eq!(f(12.0, 3, false), "12");
+        assert_eq!(f(12.0, 3, true), "12.");
+        assert_eq!(f(0.0, 3, false), "0");
+        assert_eq!(f(0.0, 3, true), "0.");
+        assert_eq!(f(-0.0001, 3, false), "0");
+        assert_eq!(f(-0.0004, 4, false), "-0.0004");
+        assert_eq!(f(0.05, 3, false), "0.05");
+        assert_eq!(f(-1.23456, 3, false), "-1.235");
+        assert_eq!(f(1200.0, 1, false), "1200");
+        assert_eq!(f(100.0, 0, false), "100");
+        assert_eq!(f(3600.12345, 4, false), "3600.1235");
+        assert_eq!(f(0.5, 0, false), "1");
+        assert_eq!(f(-0.5, 0, false), "-1");
+        assert_eq!(f(-2.5, 0, true), "-3.");
+        assert_eq!(f(-1234567.891, 3, false), "-1234567.891");
+        assert_eq!(f(1234567.8912, 4, true), "1234567.8912");
+        assert_eq!(f(0.001, 3, true), "0.001");
+        assert_eq!(f(10.0, 4, false), "10");
+        assert_eq!(f(100.10, 4, false), "100.1");
+        assert_eq!(f(9.99999, 3, false), "10");
+        assert_eq!(f(123456789.0, 0, false), "123456789");
+        assert_eq!(f(1e300, 3, false).len(), 301);
+        let mut s = Out::new(Vec::new());
+        push_uint(&mut s, 10);
+        assert_eq!(s.finish(), b"10");
+    }
+
+    #[test]
+    fn close_to_the_value_and_short() {
+        let mut seed: u64 = 88172645463325252;
+        for _ in 0..100_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let r = (seed >> 11) as f64 / (1u64 << 53) as f64;
+            let v = (r - 0.5) * 10f64.powi((seed % 12) as i32);
+            for d in [0, 1, 3, 4] {
+                let t = f(v, d, false);
+                let back: f64 = t.parse().unwrap_or(f64::NAN);
+                assert!(
+                    (back - v).abs() <= 0.5 / 10f64.powi(d as i32) * (1.0 + 1e-9) + v.abs() * 1e-15,
+                    "{v} {d} {t}"
+                );
+                assert!(
+                    !t.contains('.') || !t.ends_with('0') && !t.ends_with('.'),
+                    "{t}"
+                );
+                assert!(t != "-0", "{v}");
+            }
+        }
+    }
+}

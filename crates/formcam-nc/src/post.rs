@@ -1,0 +1,139 @@
+//! Post-processors: a [`Program`] written as the text of one NC dialect.
+//!
+//! Every writer validates the program first ([`Program::validate`]) and the
+//! axis names against what the dialect can address, then writes into a
+//! `String` (reserved up front). Numbers are written with fixed decimals and
+//! trailing zeros stripped: 3 for mm, 4 for degrees, 1 for per-minute feeds
+//! given by the program and 3 for feeds computed from block times (G93 `F`,
+//! converted feeds). An axis word is written only when its printed value
+//! changes (the first motion block writes every axis); CLDATA's `GOTO` always
+//! carries every axis.
+//!
+//! | dialect | file | motion | inverse time |
+//! | --- | --- | --- | --- |
+//! | `cldata` | `.cls` | `RAPID`, `GOTO/v1,v2,..` | `FEDRAT/f,MMPM` from the linear travel, else `FEDRAT/f,INVERS` |
+//! | `sinumerik-840d` | `.mpf` | `N10 G0 X.. J1=..` | `G93` … `G94` |
+//! | `iso` | `.nc` | `G00`/`G01 X12.` | `G93` … `G94` |
+//! | `linuxcnc` | `.ngc` | `G0`/`G1` | `G93` … `G94` |
+//! | `marlin-xab` | `.gcode` | `G0`/`G1` | converted: `F = travel / t * 60` |
+
+mod cldata;
+mod gcode;
+
+use std::fmt;
+use std::str::FromStr;
+
+use crate::num::{self, Out};
+use crate::{NcError, Program};
+
+/// The NC dialects formcam writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Dialect {
+    /// ISO 4343 APT text CLDATA with machine-axis `GOTO` records (`.cls`).
+    Cldata,
+    /// Siemens Sinumerik 840D part program (`.MPF`).
+    Sinumerik840d,
+    /// ISO 6983 / Fanuc-style G-code (`.nc`).
+    Iso,
+    /// LinuxCNC rs274ngc (`.ngc`).
+    LinuxCnc,
+    /// Marlin firmware with axes X, A, B (FiberPath / Cyclone winders) (`.gcode`).
+    MarlinXab,
+}
+
+impl Dialect {
+    /// Every dialect, in the order of [`Dialect::NAMES`].
+    pub const ALL: [Dialect; 5] = [
+        Dialect::Cldata,
+        Dialect::Sinumerik840d,
+        Dialect::Iso,
+        Dialect::LinuxCnc,
+        Dialect::MarlinXab,
+    ];
+
+    /// The dialects' names.
+    pub const NAMES: [&'static str; 5] =
+        ["cldata", "sinumerik-840d", "iso", "linuxcnc", "marlin-xab"];
+
+    /// The dialect called `name` (`"cldata"`, `"sinumerik-840d"`, `"iso"`,
+    /// `"linuxcnc"`, `"marlin-xab"`).
+    pub fn from_name(name: &str) -> Result<Self, NcError> {
+        Self::NAMES
+            .iter()
+            .position(|n| *n == name)
+            .map(|i| Self::ALL[i])
+            .ok_or_else(|| NcError::UnknownDialect {
+                name: name.to_string(),
+                allowed: Self::NAMES.join(", "),
+            })
+    }
+
+    /// The dialect's name, as [`Dialect::from_name`] takes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Dialect::Cldata => "cldata",
+            Dialect::Sinumerik840d => "sinumerik-840d",
+            Dialect::Iso => "iso",
+            Dialect::LinuxCnc => "linuxcnc",
+            Dialect::MarlinXab => "marlin-xab",
+        }
+    }
+
+    /// The file extension, without the dot.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Dialect::Cldata => "cls",
+            Dialect::Sinumerik840d => "mpf",
+            Dialect::Iso => "nc",
+            Dialect::LinuxCnc => "ngc",
+            Dialect::MarlinXab => "gcode",
+        }
+    }
+}
+
+impl FromStr for Dialect {
+    type Err = NcError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::from_name(s)
+    }
+}
+
+impl fmt::Display for Dialect {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Writes `program` in `dialect`, appending to `out`.
+///
+/// Fails, writing nothing, when the program is inconsistent
+/// ([`Program::validate`]) or has an axis the dialect cannot address.
+pub fn write(program: &Program, dialect: Dialect, out: &mut String) -> Result<(), NcError> {
+    program.validate()?;
+    num::with_out(out, |out| match dialect {
+        Dialect::Cldata => {
+            cldata::write(program, out);
+            Ok(())
+        }
+        Dialect::Sinumerik840d => gcode::write(program, &gcode::SINUMERIK, out),
+        Dialect::Iso => gcode::write(program, &gcode::ISO, out),
+        Dialect::LinuxCnc => gcode::write(program, &gcode::LINUXCNC, out),
+        Dialect::MarlinXab => gcode::write(program, &gcode::MARLIN, out),
+    })
+}
+
+/// Appends `text` with line breaks made spaces and, for parenthesis comments,
+/// `(`/`)` made `[`/`]`.
+pub(crate) fn push_comment_text(out: &mut Out, text: &str, parens: bool) {
+    // Bytes of multi-byte UTF-8 sequences are never ASCII: byte-wise
+    // replacement keeps the text valid.
+    for b in text.bytes() {
+        out.byte(match b {
+            b'\n' | b'\r' => b' ',
+            b'(' if parens => b'[',
+            b')' if parens => b']',
+            b => b,
+        });
+    }
+}

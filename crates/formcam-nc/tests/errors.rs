@@ -1,0 +1,157 @@
+//! Errors name what is wrong: the dialect, the axis, the placeholder, the line.
+
+#![allow(clippy::unwrap_used)]
+
+mod common;
+
+use formcam_nc::{
+    AxisSpec, Block, Dialect, Feed, NcError, Program, Template, read_cldata, read_gcode, write,
+    write_template,
+};
+
+#[test]
+fn unknown_dialect_lists_the_allowed_ones() {
+    let e = Dialect::from_name("fanuc").unwrap_err();
+    let m = e.to_string();
+    assert!(m.contains("`fanuc`"), "{m}");
+    for n in Dialect::NAMES {
+        assert!(m.contains(n), "{m}");
+    }
+}
+
+fn on_axes(names: &[&str]) -> Program {
+    let mut p = Program::new("P", names.iter().map(|n| AxisSpec::linear(*n)).collect());
+    p.blocks.push(Block::rapid(vec![0.0; names.len()]));
+    p
+}
+
+#[test]
+fn axes_a_dialect_cannot_address() {
+    let cases = [
+        (Dialect::LinuxCnc, &["X", "J1"][..], "J1"),
+        (Dialect::Iso, &["X", "Q"][..], "Q"),
+        (Dialect::MarlinXab, &["X", "U"][..], "U"),
+        (Dialect::Sinumerik840d, &["X", "F"][..], "F"),
+        (Dialect::Sinumerik840d, &["X", "j-1"][..], "j-1"),
+    ];
+    for (d, axes, bad) in cases {
+        let mut out = String::new();
+        let e = write(&on_axes(axes), d, &mut out).unwrap_err();
+        let m = e.to_string();
+        assert!(matches!(e, NcError::UnsupportedAxis { .. }), "{m}");
+        assert!(
+            m.contains(&format!("`{bad}`")) && m.contains(d.name()),
+            "{m}"
+        );
+        assert!(out.is_empty());
+    }
+    // CLDATA and Sinumerik identifiers take any such name.
+    let mut out = String::new();
+    write(&on_axes(&["X", "J1"]), Dialect::Sinumerik840d, &mut out).unwrap();
+    write(&on_axes(&["X", "J1"]), Dialect::Cldata, &mut out).unwrap();
+}
+
+#[test]
+fn inconsistent_programs() {
+    let mut p = on_axes(&["X", "Y"]);
+    p.blocks
+        .push(Block::linear(vec![1.0], Feed::PerMinute(100.0)));
+    let e = write(&p, Dialect::LinuxCnc, &mut String::new()).unwrap_err();
+    assert!(e.to_string().contains("block 1"), "{e}");
+
+    let mut p = on_axes(&["X", "Y"]);
+    p.blocks
+        .push(Block::linear(vec![1.0, f64::NAN], Feed::PerMinute(100.0)));
+    let e = write(&p, Dialect::Cldata, &mut String::new()).unwrap_err();
+    assert!(e.to_string().contains("axis Y"), "{e}");
+
+    let mut p = on_axes(&["X", "Y"]);
+    p.blocks
+        .push(Block::linear(vec![1.0, 2.0], Feed::InverseTime(0.0)));
+    assert!(write(&p, Dialect::Iso, &mut String::new()).is_err());
+
+    let p = on_axes(&["X", "X"]);
+    let e = write(&p, Dialect::Iso, &mut String::new()).unwrap_err();
+    assert!(e.to_string().contains("twice"), "{e}");
+}
+
+#[test]
+fn template_unknown_placeholder() {
+    let e = Template::from_toml("extension = \"x\"\nblock = \"L {axes} {feed}\"").unwrap_err();
+    let m = e.to_string();
+    assert!(m.contains("{feed}") && m.contains("`block`"), "{m}");
+    assert!(!m.contains('\n'), "one line: {m}");
+
+    // A block placeholder in the header.
+    let e =
+        Template::from_toml("extension = \"x\"\nheader = \"{f}\"\nblock = \"{axes}\"").unwrap_err();
+    let m = e.to_string();
+    assert!(m.contains("{f}") && m.contains("`header`"), "{m}");
+
+    // Lower-case names are not axes.
+    let e = Template::from_toml("extension = \"x\"\nblock = \"{x}\"").unwrap_err();
+    assert!(e.to_string().contains("{x}"));
+
+    // With axis_letters, only its keys are axis placeholders.
+    let e = Template::from_toml("extension = \"x\"\nblock = \"{Z}\"\naxis_letters = { X = \"X\" }")
+        .unwrap_err();
+    assert!(e.to_string().contains("{Z}"));
+
+    // An axis the program does not have: when writing.
+    let t = Template::from_toml("extension = \"x\"\nrapid = \"{W}\"\nblock = \"{X}\"").unwrap();
+    let e = write_template(&common::xayb(), &t, &mut String::new()).unwrap_err();
+    let m = e.to_string();
+    assert!(m.contains("{W}") && m.contains("`rapid`"), "{m}");
+
+    // Not TOML, a missing field, an unclosed brace.
+    assert!(Template::from_toml("extension = ").is_err());
+    let e = Template::from_toml("extension = \"x\"").unwrap_err();
+    assert!(e.to_string().contains("block"), "{e}");
+    let e = Template::from_toml("extension = \"x\"\nblock = \"{axes\"").unwrap_err();
+    assert!(e.to_string().contains("`block`"), "{e}");
+}
+
+fn line_of(e: NcError) -> usize {
+    match e {
+        NcError::Parse { line, .. } => line,
+        e => panic!("not a parse error: {e}"),
+    }
+}
+
+#[test]
+fn unreadable_gcode_lines() {
+    let axes = [AxisSpec::linear("X"), AxisSpec::rotary("A")];
+    let cases = [
+        ("G0 X0 A0\nG1 X10 F100\nG1 X# A3\n", 3),
+        ("G0 X0 A0\nG1 X10 Y5 F100\n", 2),
+        ("G21\n\nX10\n", 3),
+        ("G0 X0\nG2 X1 A0 I1\n", 2),
+        ("G0 X0\nG93 G1 X4\n", 2),
+        ("G0 X0\nG1 X4\n", 2),
+        ("G20\n", 1),
+        ("N10 G0 X0\nN20 G1 Q1=4 F10\n", 2),
+        ("N10 G0 X0\nN20 G1 A=four F10\n", 2),
+    ];
+    for (text, line) in cases {
+        let e = read_gcode(text, &axes).unwrap_err();
+        let m = e.to_string();
+        assert!(m.starts_with(&format!("line {line}:")), "{text:?}: {m}");
+        assert_eq!(line_of(e), line);
+    }
+}
+
+#[test]
+fn unreadable_cldata_lines() {
+    let axes = [AxisSpec::linear("X"), AxisSpec::rotary("A")];
+    let cases = [
+        ("PARTNO/P\nUNITS/MM\nRAPID\nGOTO/1,2,3\n", 4),
+        ("PARTNO/P\nGOTO/1,2\n", 2),
+        ("UNITS/INCHES\n", 1),
+        ("FEDRAT/100,IPM\n", 1),
+        ("FEDRAT/1e3\nGOTO/1,x\n", 2),
+    ];
+    for (text, line) in cases {
+        let e = read_cldata(text, &axes).unwrap_err();
+        assert_eq!(line_of(e.clone()), line, "{text:?}: {e}");
+    }
+}

@@ -9,7 +9,7 @@ use formcam_machine::Machine;
 use formcam_machine::Target;
 use formcam_machine::ik::AxisTrack;
 use formcam_motion::{
-    AxisLimits, Timing, Tolerance, check_timing, deltas, fit_blocks, global, pairwise,
+    AxisLimits, Deviation, Timing, Tolerance, check_timing, deltas, fit_blocks, global, pairwise,
     preliminary_times,
 };
 use formcam_nc::{AxisSpec, Block, Dialect, Feed, Program, Template, write, write_template};
@@ -74,16 +74,32 @@ fn nc(m: &Machine, a: usize, v: f64) -> f64 {
     }
 }
 
-/// Builds the program of one circuit on `m`.
-pub fn build(
+/// The blocks of one layer: its circuits, each cut and timed alike.
+pub struct LayerBlocks {
+    /// A label for comments and `blocks.csv`.
+    pub label: String,
+    /// Where the layer starts (NC units).
+    pub start: Vec<f64>,
+    /// Block ends (NC units) and times: `(target, t, t_star, mu)`.
+    pub blocks: Vec<(Vec<f64>, f64, f64, f64)>,
+    /// Time of the layer with the chosen, pairwise, global and preliminary times, s.
+    pub times: [f64; 4],
+    /// An offset the layer leaves to every later one (a skip layer's turn).
+    pub carry: Vec<f64>,
+}
+
+/// Checks the axes of a layer, cuts one circuit into blocks, times them, and
+/// repeats the circuit `circuits` times (each turned on by the circuit's turn).
+#[allow(clippy::too_many_arguments)]
+pub fn layer_blocks(
     job: &Path,
-    name: &str,
+    label: &str,
     m: &Machine,
     targets: &[Target],
     track: &AxisTrack,
     motion: &MotionJob,
-    post: &PostJob,
-) -> Result<Built, CliError> {
+    circuits: u32,
+) -> Result<LayerBlocks, CliError> {
     let here = |msg: String| CliError(format!("{}: {msg}", job.display()));
     // A program must not drive an axis beyond its limits.
     if let Some(i) = track
@@ -92,7 +108,8 @@ pub fn build(
         .find(|i| i.kind == "limit" || i.kind == "unreachable")
     {
         return Err(here(format!(
-            "machine: the program would {} at x = {:.3} mm ({} points, worst {:.4}); no program written",
+            "machine: {label}: the program would {} at x = {:.3} mm ({} points, worst {:.4}); no \
+             program written",
             match (i.kind, &i.axis) {
                 ("limit", Some(a)) => format!("drive axis {a} beyond its limit"),
                 _ => "miss the eye (unreachable)".to_string(),
@@ -146,17 +163,10 @@ pub fn build(
         &track.values,
         w,
         &tol,
-        position.map(|_| &deviation as &dyn Fn(&[f64], usize) -> f64),
+        position.map(|_| &deviation as Deviation<'_>),
     )
     .map_err(|e| here(format!("motion: {e}")))?;
-    let limits: Vec<AxisLimits> = m
-        .axes
-        .iter()
-        .map(|a| AxisLimits {
-            v_max: a.v_max,
-            dv_max: a.dv_max,
-        })
-        .collect();
+    let limits = axis_limits(m);
     let d = deltas(&track.values, w, &ends);
     let limit_err = |e: formcam_motion::MotionError| here(format!("machine: {e}"));
     let t_star = preliminary_times(&d, &limits, tau).map_err(limit_err)?;
@@ -178,7 +188,103 @@ pub fn build(
             m.axes[k].name
         )));
     }
-    // The program: a rapid to the start, then one G1 block per block with its time.
+    let row = |i: usize| -> Vec<f64> {
+        track
+            .row(i)
+            .iter()
+            .enumerate()
+            .map(|(a, v)| nc(m, a, *v))
+            .collect()
+    };
+    let start = row(0);
+    let last = row(ends.last().copied().unwrap_or(0));
+    // Each circuit ends where the next begins, turned on by the circuit's turn.
+    let shift: Vec<f64> = last.iter().zip(&start).map(|(e, s)| e - s).collect();
+    let mut blocks = Vec::with_capacity((ends.len() - 1) * circuits.max(1) as usize);
+    for c in 0..circuits.max(1) {
+        for (b, e) in ends.iter().skip(1).enumerate() {
+            let target = row(*e)
+                .iter()
+                .zip(&shift)
+                .map(|(v, s)| v + f64::from(c) * s)
+                .collect();
+            blocks.push((target, chosen.times[b], t_star[b], chosen.mu[b]));
+        }
+    }
+    let k = f64::from(circuits.max(1));
+    Ok(LayerBlocks {
+        label: label.to_string(),
+        start,
+        blocks,
+        times: [
+            k * chosen.total,
+            k * pw.total,
+            k * gl.total,
+            k * t_star.iter().sum::<f64>(),
+        ],
+        carry: vec![0.0; w],
+    })
+}
+
+/// The machine's axis limits for the block times.
+pub fn axis_limits(m: &Machine) -> Vec<AxisLimits> {
+    m.axes
+        .iter()
+        .map(|a| AxisLimits {
+            v_max: a.v_max,
+            dv_max: a.dv_max,
+        })
+        .collect()
+}
+
+/// A move of the spindle alone by `turn_deg` from `from` (a skip layer), timed
+/// by the spindle's velocity limit.
+pub fn skip_blocks(
+    job: &Path,
+    label: &str,
+    m: &Machine,
+    from: &[f64],
+    turn_deg: f64,
+    tau: f64,
+) -> Result<LayerBlocks, CliError> {
+    let s = m.roles.spindle.ok_or_else(|| {
+        CliError(format!(
+            "{}: {label}: a skip layer turns the spindle, and {} has none",
+            job.display(),
+            m.name
+        ))
+    })?;
+    if !turn_deg.is_finite() {
+        return Err(CliError(format!(
+            "{}: {label}: mandrel_rotation_deg must be a finite number",
+            job.display()
+        )));
+    }
+    let mut target = from.to_vec();
+    target[s] += turn_deg;
+    let t = (turn_deg.to_radians().abs() / m.axes[s].v_max).max(tau);
+    let mut carry = vec![0.0; from.len()];
+    carry[s] = turn_deg;
+    Ok(LayerBlocks {
+        label: label.to_string(),
+        start: from.to_vec(),
+        blocks: vec![(target, t, t, 1.0)],
+        times: [t; 4],
+        carry,
+    })
+}
+
+/// Writes the program of `layers` (in order) with the post of the job.
+pub fn write_program(
+    job: &Path,
+    name: &str,
+    m: &Machine,
+    layers: &[LayerBlocks],
+    motion: &MotionJob,
+    post: &PostJob,
+) -> Result<Built, CliError> {
+    let here = |msg: String| CliError(format!("{}: {msg}", job.display()));
+    let tau = positive(job, "motion.tau_s", motion.tau_s.unwrap_or(0.004))?;
     let axes: Vec<AxisSpec> = m
         .axes
         .iter()
@@ -190,35 +296,114 @@ pub fn build(
             }
         })
         .collect();
-    let row = |i: usize| -> Vec<f64> {
-        track
-            .row(i)
+    let total: [f64; 4] = layers.iter().fold([0.0; 4], |mut acc, l| {
+        for (a, t) in acc.iter_mut().zip(l.times) {
+            *a += t;
+        }
+        acc
+    });
+    let count: usize = layers.iter().map(|l| l.blocks.len()).sum();
+    let mut program = Program::new(name, axes);
+    let limits = axis_limits(m);
+    let mut csv = String::from("block,t");
+    for a in &m.axes {
+        let _ = write!(csv, ",{}", a.name);
+    }
+    csv.push_str(",layer,t_star,mu\n");
+    let mut here_now: Option<Vec<f64>> = None;
+    let mut n = 0usize;
+    let mut transitions = 0.0;
+    let mut pending: Option<String> = None;
+    let mut carried = vec![0.0; m.axes.len()];
+    for (li, l) in layers.iter().enumerate() {
+        // A continuous rotary axis (no limits) starts the layer on the turn
+        // nearest where it stands.
+        // Skip layers before this one turn it on by their carry.
+        let turn: Vec<f64> = m
+            .axes
             .iter()
             .enumerate()
-            .map(|(a, v)| nc(m, a, *v))
-            .collect()
-    };
-    let mut program = Program::new(name, axes);
+            .map(|(a, ax)| {
+                let c = if l.carry.iter().any(|v| *v != 0.0) {
+                    0.0
+                } else {
+                    carried[a]
+                };
+                match &here_now {
+                    Some(prev)
+                        if ax.is_rotary() && ax.min.is_infinite() && ax.max.is_infinite() =>
+                    {
+                        c + 360.0 * ((prev[a] - l.start[a] - c) / 360.0).round()
+                    }
+                    _ => c,
+                }
+            })
+            .collect();
+        for (c, v) in carried.iter_mut().zip(&l.carry) {
+            *c += v;
+        }
+        let shifted = |v: &[f64]| -> Vec<f64> { v.iter().zip(&turn).map(|(x, t)| x + t).collect() };
+        let start = shifted(&l.start);
+        match &here_now {
+            None => program
+                .blocks
+                .push(Block::rapid(start.clone()).with_comment(l.label.clone())),
+            Some(prev) if prev.iter().zip(&start).all(|(p, s)| (p - s).abs() < 1e-9) => {
+                // The layer starts where the last ended: its label goes on its
+                // first block.
+                pending = Some(l.label.clone());
+            }
+            Some(prev) => {
+                // From the end of the last layer to the start of this one: one
+                // block as fast as the axes allow.
+                let t = prev
+                    .iter()
+                    .zip(&start)
+                    .zip(m.axes.iter().zip(&limits))
+                    .map(|((p, s), (a, lim))| {
+                        let d = if a.is_rotary() {
+                            (s - p).to_radians()
+                        } else {
+                            s - p
+                        };
+                        d.abs() / lim.v_max
+                    })
+                    .fold(tau, f64::max);
+                transitions += t;
+                program.blocks.push(
+                    Block::linear(start.clone(), Feed::InverseTime(t))
+                        .with_comment(l.label.clone()),
+                );
+            }
+        }
+        for (target, t, t_star, mu) in &l.blocks {
+            n += 1;
+            let target = shifted(target);
+            let _ = write!(csv, "{n},{t}");
+            for v in &target {
+                let _ = write!(csv, ",{v}");
+            }
+            let _ = writeln!(csv, ",{},{t_star},{mu}", li + 1);
+            let block = Block::linear(target, Feed::InverseTime(*t));
+            program.blocks.push(match pending.take() {
+                Some(label) => block.with_comment(label),
+                None => block,
+            });
+        }
+        here_now = program.blocks.last().map(|b| b.target.clone());
+    }
     program.header_comments = vec![
         format!("formcam: {} on {}", job.display(), m.name),
         format!(
-            "one circuit, {} blocks, {:.3} s ({} block times; pairwise {:.3} s, global {:.3} s)",
-            ends.len() - 1,
-            chosen.total,
+            "{} layers, {count} blocks, {:.3} s ({} block times; pairwise {:.3} s, global {:.3} s)",
+            layers.len(),
+            total[0] + transitions,
             motion.times.as_deref().unwrap_or("global"),
-            pw.total,
-            gl.total
+            total[1] + transitions,
+            total[2] + transitions
         ),
     ];
-    program
-        .blocks
-        .push(Block::rapid(row(0)).with_comment("start of the circuit"));
-    for (b, e) in ends.iter().skip(1).enumerate() {
-        program
-            .blocks
-            .push(Block::linear(row(*e), Feed::InverseTime(chosen.times[b])));
-    }
-    let mut text = String::new();
+    let mut text = String::with_capacity(count * 64);
     let ext = match (&post.template, &post.dialect) {
         (Some(_), Some(_)) => {
             return Err(here(
@@ -243,41 +428,29 @@ pub fn build(
             dialect.extension().to_string()
         }
     };
-    let mut csv = String::from("block,t,t_star,mu");
-    for a in &m.axes {
-        let _ = write!(csv, ",{}", a.name);
-    }
-    csv.push('\n');
-    for (b, e) in ends.iter().skip(1).enumerate() {
-        let _ = write!(
-            csv,
-            "{},{},{},{}",
-            b + 1,
-            chosen.times[b],
-            t_star[b],
-            chosen.mu[b]
-        );
-        for v in row(*e) {
-            let _ = write!(csv, ",{v}");
-        }
-        csv.push('\n');
-    }
     let mut summary = serde_json::Map::new();
-    summary.insert("blocks".into(), json!(ends.len() - 1));
-    summary.insert("program_time_s".into(), json!(chosen.total));
-    summary.insert("program_time_pairwise_s".into(), json!(pw.total));
-    summary.insert("program_time_global_s".into(), json!(gl.total));
+    summary.insert("blocks".into(), json!(count));
+    summary.insert("layers".into(), json!(layers.len()));
+    summary.insert("program_time_s".into(), json!(total[0] + transitions));
+    summary.insert(
+        "program_time_pairwise_s".into(),
+        json!(total[1] + transitions),
+    );
+    summary.insert(
+        "program_time_global_s".into(),
+        json!(total[2] + transitions),
+    );
     summary.insert(
         "program_time_preliminary_s".into(),
-        json!(t_star.iter().sum::<f64>()),
+        json!(total[3] + transitions),
     );
     summary.insert("program_file".into(), json!(format!("program.{ext}")));
     let line = format!(
-        "; {} blocks, {:.2} s per circuit (pairwise {:.2} s, global {:.2} s) -> program.{ext}",
-        ends.len() - 1,
-        chosen.total,
-        pw.total,
-        gl.total
+        "; {} layers, {count} blocks, {:.2} s (pairwise {:.2} s, global {:.2} s) -> program.{ext}",
+        layers.len(),
+        total[0] + transitions,
+        total[1] + transitions,
+        total[2] + transitions
     );
     Ok(Built {
         files: vec![

@@ -26,6 +26,8 @@ struct Job {
     winding: Option<WindingSpec>,
     eye: Option<EyeJob>,
     machine: Option<MachineJob>,
+    /// Multi-layer jobs: one table per layer, in winding order.
+    layer: Option<Vec<WindingSpec>>,
     motion: Option<MotionJob>,
     post: Option<PostJob>,
     #[serde(flatten)]
@@ -69,6 +71,63 @@ struct Planned {
     post: PostJob,
 }
 
+/// The machine file and IK method a job's `[machine]` names.
+fn machine_of(
+    job_path: &Path,
+    dir: &Path,
+    mj: &MachineJob,
+) -> Result<(PathBuf, IkMethod), CliError> {
+    let method = match mj.ik.as_deref() {
+        None | Some("auto") => IkMethod::Auto,
+        Some("solver") => IkMethod::Solver,
+        Some("closed-form") => IkMethod::ClosedForm,
+        Some(other) => {
+            return Err(CliError(format!(
+                "{}: machine.ik: \"{other}\" is not one of auto, solver, closed-form",
+                job_path.display()
+            )));
+        }
+    };
+    let near = dir.join(&mj.file);
+    let file = if near.exists() {
+        near
+    } else {
+        PathBuf::from(&mj.file)
+    };
+    if !file.exists() {
+        return Err(CliError(format!(
+            "{}: machine.file: \"{}\" not found (looked in the job's folder and the current one)",
+            job_path.display(),
+            mj.file
+        )));
+    }
+    Ok((file, method))
+}
+
+/// What the machine must reach over a circuit of `layer`: the eye trajectory's
+/// points (winders) or the path with the roller's radius (placement heads).
+fn targets_for(
+    m: &Machine,
+    mandrel: &Mandrel,
+    layer: &Layer,
+    traj: Option<&EyeTrajectory>,
+    eye: Option<&EyeSpec>,
+) -> Vec<Target> {
+    match traj {
+        Some(t) => winder_targets(mandrel, t),
+        None => {
+            let circuit = Circuit::new(mandrel, layer);
+            let n = eye.map_or(2000, |e| e.samples - 1);
+            let path: Vec<_> = circuit
+                .points(n)
+                .iter()
+                .map(|p| (p.x, p.z, p.r, p.v, p.alpha))
+                .collect();
+            placement_targets(mandrel, &path, m.roles.roller_radius)
+        }
+    }
+}
+
 /// Plans the layer of a job; errors name the job file and the field.
 fn plan(job_path: &Path) -> Result<Planned, CliError> {
     let job = read_job(job_path)?;
@@ -89,34 +148,7 @@ fn plan(job_path: &Path) -> Result<Planned, CliError> {
     let eye = job.eye.map(|e| e.spec(read)).transpose().map_err(here)?;
     let machine = job
         .machine
-        .map(|mj| {
-            let method = match mj.ik.as_deref() {
-                None | Some("auto") => IkMethod::Auto,
-                Some("solver") => IkMethod::Solver,
-                Some("closed-form") => IkMethod::ClosedForm,
-                Some(other) => {
-                    return Err(CliError(format!(
-                        "{}: machine.ik: \"{other}\" is not one of auto, solver, closed-form",
-                        job_path.display()
-                    )));
-                }
-            };
-            let near = dir.join(&mj.file);
-            let file = if near.exists() {
-                near
-            } else {
-                PathBuf::from(&mj.file)
-            };
-            if !file.exists() {
-                return Err(CliError(format!(
-                    "{}: machine.file: \"{}\" not found (looked in the job's folder and the \
-                     current one)",
-                    job_path.display(),
-                    mj.file
-                )));
-            }
-            Ok((file, method))
-        })
+        .map(|mj| machine_of(job_path, &dir, &mj))
         .transpose()?;
     let layer = plan_layer(&mandrel, &spec).map_err(here)?;
     Ok(Planned {
@@ -188,6 +220,17 @@ pub enum Stage {
 
 /// `formcam wind path|eye|axes JOB -o OUT`; returns a one-line summary.
 pub fn run(job: &Path, out: &Path, stage: Stage) -> Result<String, CliError> {
+    if read_job(job)?.layer.is_some() {
+        return if stage == Stage::Program {
+            run_layers(job, out)
+        } else {
+            Err(CliError(format!(
+                "{}: [[layer]]: a multi-layer job runs as a whole program (`formcam wind JOB -o \
+                 OUT`); path, eye and axes take one [winding]",
+                job.display()
+            )))
+        };
+    }
     let t0 = Instant::now();
     let Planned {
         mandrel,
@@ -249,19 +292,7 @@ pub fn run(job: &Path, out: &Path, stage: Stage) -> Result<String, CliError> {
         traj = Some(t);
     }
     if let Some((m, file, method)) = &machine {
-        let targets = match &traj {
-            Some(t) => winder_targets(&mandrel, t),
-            None => {
-                let circuit = Circuit::new(&mandrel, &layer);
-                let n = eye.as_ref().map_or(2000, |e| e.samples - 1);
-                let path: Vec<_> = circuit
-                    .points(n)
-                    .iter()
-                    .map(|p| (p.x, p.z, p.r, p.v, p.alpha))
-                    .collect();
-                placement_targets(&mandrel, &path, m.roles.roller_radius)
-            }
-        };
+        let targets = targets_for(m, &mandrel, &layer, traj.as_ref(), eye.as_ref());
         let track = solve(m, &targets, *method)
             .map_err(|e| CliError(format!("{}: {}: {e}", job.display(), file.display())))?;
         let passed = band_passed(m, &targets, &track);
@@ -275,11 +306,20 @@ pub fn run(job: &Path, out: &Path, stage: Stage) -> Result<String, CliError> {
                 .file_stem()
                 .map(|n| n.to_string_lossy().into_owned())
                 .unwrap_or_default();
-            let built = crate::program::build(job, &stem, m, &targets, &track, &motion, &post)?;
+            let layer_blocks = crate::program::layer_blocks(
+                job,
+                "layer 1",
+                m,
+                &targets,
+                &track,
+                &motion,
+                layer.pattern.circuits,
+            )?;
+            let built =
+                crate::program::write_program(job, &stem, m, &[layer_blocks], &motion, &post)?;
             files.extend(built.files);
             if let Some(obj) = summary.as_object_mut() {
                 obj.extend(built.summary);
-                obj.insert("layers".into(), json!(1));
             }
             program_line = built.line;
         }
@@ -352,6 +392,165 @@ fn add_eye_summary(summary: &mut serde_json::Value, t: &EyeTrajectory) {
         obj.insert("violations".into(), json!(t.violations));
         obj.insert("eye".into(), json!(t));
     }
+}
+
+/// A multi-layer job (`[[layer]]`): each layer planned on the mandrel grown by
+/// the layers before it, its circuits cut into blocks and timed, and all of them
+/// written as one program.
+fn run_layers(job_path: &Path, out: &Path) -> Result<String, CliError> {
+    let t0 = Instant::now();
+    let job = read_job(job_path)?;
+    let at = |msg: String| CliError(format!("{}: {msg}", job_path.display()));
+    if job.winding.is_some() {
+        return Err(at("[winding] and [[layer]]: give one of them".into()));
+    }
+    let mspec = job
+        .mandrel
+        .ok_or_else(|| at("[mandrel]: missing table".into()))?;
+    let dir = job_path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let read = |name: &str| {
+        let p: PathBuf = dir.join(name);
+        fs::read_to_string(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))
+    };
+    let eye = job
+        .eye
+        .map(|e| e.spec(read))
+        .transpose()
+        .map_err(|e| at(e.to_string()))?;
+    let (file, method) = job
+        .machine
+        .as_ref()
+        .map(|mj| machine_of(job_path, &dir, mj))
+        .transpose()?
+        .ok_or_else(|| at("[machine]: missing table (a program needs a machine)".into()))?;
+    let m = crate::machine::load(&file)?;
+    let motion = job.motion.unwrap_or_default();
+    let post = job.post.unwrap_or_default();
+    let layers = job.layer.unwrap_or_default();
+    if layers.is_empty() {
+        return Err(at("[[layer]]: no layers".into()));
+    }
+    let tau = motion.tau_s.unwrap_or(0.004);
+    let mut grown = 0.0;
+    let mut fibre = 0.0;
+    let mut blocks: Vec<crate::program::LayerBlocks> = Vec::new();
+    let mut per_layer = Vec::new();
+    for (i, w) in layers.iter().enumerate() {
+        // Errors name the layer: `layer[2].band_width`.
+        let field = |e: formcam_winding::WindingError| {
+            at(e.to_string()
+                .replacen("winding.", &format!("layer[{}].", i + 1), 1))
+        };
+        let kind = w.kind.clone().unwrap_or_else(|| "helical".into());
+        let label = format!("layer {} ({kind})", i + 1);
+        if kind == "skip" {
+            let from = blocks
+                .last()
+                .and_then(|b| b.blocks.last())
+                .map(|b| b.0.clone())
+                .ok_or_else(|| {
+                    at(format!(
+                        "layer[{}]: a skip layer needs a layer before it",
+                        i + 1
+                    ))
+                })?;
+            let turn = w.mandrel_rotation_deg.ok_or_else(|| {
+                at(format!(
+                    "layer[{}].mandrel_rotation_deg: missing: how far the mandrel turns, degrees",
+                    i + 1
+                ))
+            })?;
+            let b = crate::program::skip_blocks(job_path, &label, &m, &from, turn, tau)?;
+            per_layer
+                .push(json!({ "layer": i + 1, "kind": kind, "blocks": 1, "time_s": b.times[0] }));
+            blocks.push(b);
+            continue;
+        }
+        let mandrel = mspec
+            .grown(grown)
+            .and_then(|g| g.build(read))
+            .map_err(field)?;
+        let spec = w.layer_spec(&mandrel).map_err(field)?;
+        let layer = plan_layer(&mandrel, &spec).map_err(field)?;
+        let traj = if m.roles.kind == MachineKind::Placement {
+            None
+        } else {
+            let spec = eye
+                .as_ref()
+                .ok_or_else(|| at("[eye]: missing table".into()))?;
+            Some(eye_trajectory(&mandrel, &layer, spec).map_err(field)?)
+        };
+        let targets = targets_for(&m, &mandrel, &layer, traj.as_ref(), eye.as_ref());
+        let track = solve(&m, &targets, method)
+            .map_err(|e| at(format!("{label}: {}: {e}", file.display())))?;
+        let b = crate::program::layer_blocks(
+            job_path,
+            &label,
+            &m,
+            &targets,
+            &track,
+            &motion,
+            layer.pattern.circuits,
+        )?;
+        // The layer's thickness where the mandrel is widest.
+        let thick = layer
+            .points
+            .iter()
+            .zip(&layer.thickness)
+            .max_by(|a, b| a.0.r.total_cmp(&b.0.r))
+            .map_or(spec.band_thickness, |(_, t)| *t);
+        per_layer.push(json!({
+            "layer": i + 1,
+            "kind": kind,
+            "mandrel_growth_mm": grown,
+            "alpha_equator_deg": layer.report.alpha_equator_rad.to_degrees(),
+            "circuits": layer.pattern.circuits,
+            "blocks": b.blocks.len(),
+            "time_s": b.times[0],
+            "thickness_mm": thick,
+            "fibre_length_mm": layer.report.fibre_length_mm,
+            "limits_ok": track.limits_ok(),
+            "max_ik_residual_mm": track.max_residual_mm(),
+        }));
+        grown += thick;
+        fibre += layer.report.fibre_length_mm;
+        blocks.push(b);
+    }
+    let stem = job_path
+        .file_stem()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let built = crate::program::write_program(job_path, &stem, &m, &blocks, &motion, &post)?;
+    let mut summary = serde_json::Map::new();
+    summary.insert("job".into(), json!(job_path.display().to_string()));
+    summary.insert("machine".into(), json!(m.name));
+    summary.insert("machine_file".into(), json!(file.display().to_string()));
+    summary.insert(
+        "axes".into(),
+        json!(m.axes.iter().map(|a| a.name.clone()).collect::<Vec<_>>()),
+    );
+    summary.insert("fibre_length_mm".into(), json!(fibre));
+    summary.insert("per_layer".into(), json!(per_layer));
+    summary.extend(built.summary);
+    let json =
+        serde_json::to_vec_pretty(&summary).map_err(|e| CliError(format!("summary.json: {e}")))?;
+    let mut files = built.files;
+    files.push(("summary.json".to_string(), json));
+    write_all(out, &files)?;
+    Ok(format!(
+        "{}: {} on {}, fibre {:.1} m{}, {:.1} ms -> {}",
+        job_path.display(),
+        layers
+            .iter()
+            .map(|l| l.kind.clone().unwrap_or_else(|| "helical".into()))
+            .collect::<Vec<_>>()
+            .join(" + "),
+        m.name,
+        fibre / 1000.0,
+        built.line,
+        t0.elapsed().as_secs_f64() * 1e3,
+        out.display()
+    ))
 }
 
 /// Axis values in NC units: mm, and degrees for rotary axes.
@@ -500,7 +699,7 @@ pub fn run_demo(examples: &Path, out: &Path) -> Result<(), CliError> {
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
         let j = read_job(job)?;
-        let stage = if j.machine.is_some() && j.post.is_some() {
+        let stage = if j.machine.is_some() && (j.post.is_some() || j.layer.is_some()) {
             Stage::Program
         } else if j.machine.is_some() {
             Stage::Axes

@@ -239,6 +239,11 @@ fn demo_runs_every_example() {
         if p.extension().is_some_and(|x| x == "toml") {
             let name = p.file_stem().unwrap();
             assert!(out.join(name).join("summary.json").exists(), "{name:?}");
+            if std::fs::read_to_string(&p).unwrap().contains("[[layer]]") {
+                // Multi-layer jobs write the program.
+                assert!(out.join(name).join("blocks.csv").exists(), "{name:?}");
+                continue;
+            }
             assert!(out.join(name).join("path.csv").exists(), "{name:?}");
             let svg = std::fs::read_to_string(out.join(name).join("path.svg")).unwrap();
             assert!(
@@ -453,7 +458,7 @@ fn wind_writes_the_whole_program() {
         blocks
     );
     let csv = std::fs::read_to_string(out.join("blocks.csv")).unwrap();
-    assert!(csv.starts_with("block,t,"));
+    assert!(csv.starts_with("block,t,A,X,Y,B,"));
     assert_eq!(csv.lines().count(), blocks + 1);
 }
 
@@ -485,4 +490,51 @@ fn a_program_beyond_a_limit_is_refused() {
         err.contains("job.toml") && err.contains("axis X beyond its limit"),
         "{err}"
     );
+}
+
+#[test]
+fn a_multi_layer_job_grows_the_mandrel_and_writes_one_program() {
+    let out = succeeds("layers", &["wind", "tube-layers-4axis.toml"]);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["layers"], 4);
+    let layers = summary["per_layer"].as_array().unwrap();
+    let kinds: Vec<&str> = layers.iter().map(|l| l["kind"].as_str().unwrap()).collect();
+    assert_eq!(kinds, ["hoop", "helical", "skip", "helical"]);
+    // Each winding layer is planned on the mandrel grown by the ones before it.
+    let t0 = layers[0]["thickness_mm"].as_f64().unwrap();
+    let g1 = layers[1]["mandrel_growth_mm"].as_f64().unwrap();
+    let t1 = layers[1]["thickness_mm"].as_f64().unwrap();
+    let g3 = layers[3]["mandrel_growth_mm"].as_f64().unwrap();
+    assert!((g1 - t0).abs() < 1e-12 && (g3 - (t0 + t1)).abs() < 1e-12);
+    // A hoop layer lays one band width per turn.
+    let hoop = layers[0]["alpha_equator_deg"].as_f64().unwrap();
+    let expect = (std::f64::consts::TAU * 75.0 / 6.0).atan().to_degrees();
+    assert!((hoop - expect).abs() < 1e-9, "{hoop} vs {expect}");
+    let sum: f64 = layers.iter().map(|l| l["time_s"].as_f64().unwrap()).sum();
+    let total = summary["program_time_s"].as_f64().unwrap();
+    assert!(total >= sum - 1e-6, "{total} vs {sum}");
+    let program = std::fs::read_to_string(out.join("program.ngc")).unwrap();
+    for label in [
+        "layer 1 [hoop]",
+        "layer 2 [helical]",
+        "layer 3 [skip]",
+        "layer 4 [helical]",
+    ] {
+        assert!(program.contains(label), "{label}");
+    }
+    let csv = std::fs::read_to_string(out.join("blocks.csv")).unwrap();
+    assert_eq!(
+        csv.lines().count() - 1,
+        summary["blocks"].as_u64().unwrap() as usize
+    );
+    // Path, eye and axes take one [winding].
+    let st = formcam()
+        .args(["wind", "axes"])
+        .arg(examples().join("tube-layers-4axis.toml"))
+        .args(["-o", "/nonexistent/never"])
+        .output()
+        .unwrap();
+    assert!(!st.status.success());
+    assert!(String::from_utf8_lossy(&st.stderr).contains("[[layer]]"));
 }

@@ -46,7 +46,7 @@ impl Out {
     }
 
     /// Makes room for `n` buffered bytes (`n <= CAP`).
-    #[inline]
+    #[inline(always)]
     fn room(&mut self, n: usize) {
         if self.len + n > CAP {
             self.flush();
@@ -59,7 +59,7 @@ impl Out {
     }
 
     /// Appends a string.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn s(&mut self, s: &str) {
         let b = s.as_bytes();
         if b.len() > 64 {
@@ -74,8 +74,20 @@ impl Out {
         self.len += b.len();
     }
 
+    /// Appends a short word (at most 8 bytes, padded with anything) in one
+    /// 8-byte store.
+    #[inline(always)]
+    pub(crate) fn word(&mut self, w: &Word) {
+        self.room(8);
+        let at = self.len & (CAP - 1);
+        if let Some(dst) = self.buf.get_mut(at..at + 8) {
+            dst.copy_from_slice(&w.bytes);
+        }
+        self.len += w.len;
+    }
+
     /// Appends one ASCII byte.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn byte(&mut self, b: u8) {
         self.room(1);
         self.buf[self.len] = b;
@@ -97,6 +109,26 @@ impl Out {
     fn finish(mut self) -> Vec<u8> {
         self.flush();
         self.vec
+    }
+}
+
+/// A word of at most 8 bytes for [`Out::word`].
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Word {
+    bytes: [u8; 8],
+    len: usize,
+}
+
+impl Word {
+    /// `s` as a word, or `None` when it is longer than 8 bytes.
+    pub(crate) fn new(s: &str) -> Option<Self> {
+        let b = s.as_bytes();
+        let mut bytes = [0u8; 8];
+        bytes.get_mut(..b.len())?.copy_from_slice(b);
+        Some(Self {
+            bytes,
+            len: b.len(),
+        })
     }
 }
 
@@ -123,7 +155,7 @@ pub(crate) fn with_out(
 
 /// `v` scaled by `10^decimals` and rounded (half away from zero); `None`
 /// when it does not fit an `i64` comfortably (or is not finite).
-#[inline]
+#[inline(always)]
 pub(crate) fn scaled(v: f64, decimals: u32) -> Option<i64> {
     let s = v * POW10[decimals.min(9) as usize];
     // `as` truncates towards zero; adding ±0.5 first rounds half away from zero
@@ -141,15 +173,41 @@ pub(crate) fn push(out: &mut Out, v: f64, decimals: u32, keep_point: bool) {
     }
 }
 
-/// Writes the scaled integer `s` (value `s / 10^decimals`), digits in place.
-#[inline]
-pub(crate) fn push_scaled(out: &mut Out, s: i64, decimals: u32, keep_point: bool) {
-    let mut u = s.unsigned_abs();
-    let mut d = decimals.min(9) as usize;
-    while d > 0 && u.is_multiple_of(10) {
-        u /= 10;
-        d -= 1;
+/// Two-digit pairs "00".."99".
+const PAIRS: [[u8; 2]; 100] = {
+    let mut t = [[0u8; 2]; 100];
+    let mut i = 0;
+    while i < 100 {
+        t[i] = [b'0' + (i / 10) as u8, b'0' + (i % 10) as u8];
+        i += 1;
     }
+    t
+};
+
+/// Writes the scaled integer `s` (value `s / 10^decimals`): digits in place,
+/// right to left, two at a time.
+#[inline(always)]
+pub(crate) fn push_scaled(out: &mut Out, s: i64, decimals: u32, keep_point: bool) {
+    // Every index below is under `start + NUM_MAX <= CAP`; masking with
+    // `CAP - 1` (a power of two) only tells the compiler so.
+    const M: usize = CAP - 1;
+    macro_rules! two {
+        ($buf:expr, $p:expr, $u:expr) => {{
+            let r = PAIRS[($u % 100) as usize];
+            $u /= 100;
+            $p -= 2;
+            $buf[$p & M] = r[0];
+            $buf[($p + 1) & M] = r[1];
+        }};
+    }
+    macro_rules! one {
+        ($buf:expr, $p:expr, $b:expr) => {{
+            $p -= 1;
+            $buf[$p & M] = $b;
+        }};
+    }
+    let mut u = s.unsigned_abs();
+    let d = decimals.min(9) as usize;
     let digits = if u == 0 { 1 } else { u.ilog10() as usize + 1 };
     let int_digits = digits.saturating_sub(d).max(1);
     let total = usize::from(s < 0)
@@ -161,35 +219,47 @@ pub(crate) fn push_scaled(out: &mut Out, s: i64, decimals: u32, keep_point: bool
         };
     out.room(NUM_MAX);
     let start = out.len;
-    let buf = &mut out.buf[start..start + total];
-    let mut p = total;
-    if d == 0 && keep_point {
-        p -= 1;
-        buf[p] = b'.';
-    }
+    let buf = &mut out.buf;
+    let mut p = start + total;
     if d > 0 {
-        for _ in 0..d {
-            p -= 1;
-            buf[p] = b'0' + (u % 10) as u8;
+        let mut k = d;
+        while k >= 2 {
+            two!(buf, p, u);
+            k -= 2;
+        }
+        if k == 1 {
+            one!(buf, p, b'0' + (u % 10) as u8);
             u /= 10;
         }
-        p -= 1;
-        buf[p] = b'.';
+        one!(buf, p, b'.');
+    } else if keep_point {
+        one!(buf, p, b'.');
     }
-    loop {
-        p -= 1;
-        buf[p] = b'0' + (u % 10) as u8;
-        u /= 10;
-        if u == 0 {
-            break;
-        }
+    while u >= 100 {
+        two!(buf, p, u);
+    }
+    if u >= 10 {
+        two!(buf, p, u);
+    } else {
+        one!(buf, p, b'0' + u as u8);
     }
     if s < 0 {
-        p -= 1;
-        buf[p] = b'-';
+        one!(buf, p, b'-');
     }
-    debug_assert_eq!(p, 0);
-    out.len += total;
+    debug_assert_eq!(p, start);
+    // Trailing zeros of the fraction go, and its point when nothing is left
+    // (unless `keep_point`).
+    let mut end = start + total;
+    if d > 0 {
+        let point = end - d - 1;
+        while end > point + 1 && buf[(end - 1) & M] == b'0' {
+            end -= 1;
+        }
+        if end == point + 1 && !keep_point {
+            end = point;
+        }
+    }
+    out.len = end;
 }
 
 /// Writes an unsigned integer.

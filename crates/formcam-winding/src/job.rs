@@ -87,6 +87,11 @@ pub struct WindingSpec {
     pub mu_limit: Option<f64>,
     /// Points written per pass (default 2001).
     pub samples: Option<usize>,
+    /// Multi-layer jobs (`[[layer]]`): `helical` (default), `hoop` (tubes: the
+    /// band advances one width per turn) or `skip` (the mandrel turns alone).
+    pub kind: Option<String>,
+    /// Skip layers: how far the mandrel turns, degrees.
+    pub mandrel_rotation_deg: Option<f64>,
 }
 
 /// One `mu_segments` entry.
@@ -219,6 +224,33 @@ fn dome_shape(
 }
 
 impl MandrelSpec {
+    /// The mandrel grown by `t` mm of laid band: every radius (and the domes'
+    /// crown and knuckle radii) larger by `t`; the polar openings and lengths stay.
+    /// Ellipsoidal domes keep their axis ratio (the offset of an ellipse is not
+    /// an ellipse: an approximation); profiles cannot grow yet.
+    pub fn grown(&self, t: f64) -> Result<MandrelSpec, WindingError> {
+        if t == 0.0 {
+            return Ok(self.clone());
+        }
+        if self.kind.as_deref() == Some("profile") {
+            return Err(WindingError::field(
+                "mandrel.kind",
+                "a profile mandrel cannot grow by the layers yet: one layer per job",
+            ));
+        }
+        let add = |v: Option<f64>| v.map(|v| v + t);
+        Ok(MandrelSpec {
+            radius: add(self.radius),
+            radius_start: add(self.radius_start),
+            radius_end: add(self.radius_end),
+            crown_radius: add(self.crown_radius),
+            knuckle_radius: add(self.knuckle_radius),
+            crown_radius_end: add(self.crown_radius_end),
+            knuckle_radius_end: add(self.knuckle_radius_end),
+            ..self.clone()
+        })
+    }
+
     /// Builds the mandrel; `read` loads a file named by the job (a profile table).
     pub fn build(
         &self,
@@ -345,7 +377,47 @@ impl WindingSpec {
                 }
             },
         };
+        let hoop = match self.kind.as_deref() {
+            None | Some("helical") => false,
+            Some("hoop") => true,
+            Some(other) => {
+                return Err(WindingError::field(
+                    "winding.kind",
+                    format!("\"{other}\" is not a layer kind here (helical or hoop)"),
+                ));
+            }
+        };
+        if self.mandrel_rotation_deg.is_some() {
+            return Err(WindingError::field(
+                "winding.mandrel_rotation_deg",
+                "only for kind = \"skip\"",
+            ));
+        }
         let ends = match mandrel {
+            Mandrel::Cylinder(_) | Mandrel::Cone(_) if hoop => {
+                if self.winding_angle_deg.is_some() {
+                    return Err(WindingError::field(
+                        "winding.winding_angle_deg",
+                        "a hoop layer's angle follows from the band width; leave it out",
+                    ));
+                }
+                let w = need(
+                    "winding.band_width",
+                    self.band_width,
+                    "band width in mm, > 0",
+                )?;
+                let (z0, _) = mandrel.z_range();
+                // One band width per turn: tan(alpha) = 2 pi r / w.
+                Ends::Tube {
+                    winding_angle: (std::f64::consts::TAU * mandrel.r(z0) / w).atan(),
+                }
+            }
+            _ if hoop => {
+                return Err(WindingError::field(
+                    "winding.kind",
+                    "hoop layers are wound on tubes (cylinder or cone mandrels)",
+                ));
+            }
             Mandrel::Cylinder(_) | Mandrel::Cone(_) => {
                 let deg = need(
                     "winding.winding_angle_deg",

@@ -1,7 +1,7 @@
 //! The G-code writers (Sinumerik 840D, ISO, LinuxCNC, Marlin): one engine,
 //! one [`Style`] per dialect.
 
-use crate::num::{self, DEG, FEED, FEED_FINE, MM, Out};
+use crate::num::{self, DEG, FEED, FEED_FINE, MM, Out, Word};
 use crate::post::push_comment_text;
 use crate::program::nc_travel;
 use crate::{Feed, Motion, NcError, Program};
@@ -102,8 +102,8 @@ const SINUMERIK_RESERVED: &str = "DFGHLMNOPRST";
 const SINUMERIK_TEXT: &str = "a single letter other than D F G H L M N O P R S T, \
      or an identifier like J1 (written J1=value)";
 
-/// The word written before each axis value (`"X"`, `"J1="`) and its decimals.
-fn axis_words(p: &Program, st: &Style) -> Result<Vec<(String, u32)>, NcError> {
+/// The word written before each axis value (`" X"`, `" J1="`) and its decimals.
+fn axis_words(p: &Program, st: &Style) -> Result<Vec<(AxisWord, u32)>, NcError> {
     p.axes
         .iter()
         .map(|a| {
@@ -137,9 +137,30 @@ fn axis_words(p: &Program, st: &Style) -> Result<Vec<(String, u32)>, NcError> {
                     }
                 }
             };
+            let word = format!(" {word}");
+            let word = match Word::new(&word) {
+                Some(w) => AxisWord::Short(w),
+                None => AxisWord::Long(word),
+            };
             Ok((word, if a.rotary { DEG } else { MM }))
         })
         .collect()
+}
+
+/// The text before an axis value: short ones are written in one store.
+enum AxisWord {
+    Short(Word),
+    Long(String),
+}
+
+impl AxisWord {
+    #[inline(always)]
+    fn push(&self, out: &mut Out) {
+        match self {
+            AxisWord::Short(w) => out.word(w),
+            AxisWord::Long(s) => out.s(s),
+        }
+    }
 }
 
 /// N numbers 10, 20, … when the dialect numbers its blocks.
@@ -219,7 +240,8 @@ pub(super) fn write(p: &Program, st: &Style, out: &mut Out) -> Result<(), NcErro
     };
     header(out, p, st, &mut ln);
 
-    let mut last: Vec<Option<i64>> = vec![None; n];
+    // Last printed scaled values; `i64::MIN` (never a scaled value): none.
+    let mut last: Vec<i64> = vec![i64::MIN; n];
     let mut g93 = false;
     let mut last_feed: Option<(i64, u32)> = None;
     let mut prev: Option<&[f64]> = None;
@@ -260,25 +282,30 @@ pub(super) fn write(p: &Program, st: &Style, out: &mut Out) -> Result<(), NcErro
             }
         }
         let mut any = false;
-        for (k, (v, (word, dec))) in b.target.iter().zip(&words).enumerate() {
-            let s = num::scaled(*v, *dec);
-            if s.is_some() && s == last[k] {
-                continue;
+        let target = &b.target[..n];
+        let last = &mut last[..n];
+        for k in 0..n {
+            let v = target[k];
+            let (word, dec) = &words[k];
+            match num::scaled(v, *dec) {
+                Some(s) if s == last[k] => continue,
+                Some(s) => {
+                    word.push(out);
+                    num::push_scaled(out, s, *dec, st.keep_point);
+                    last[k] = s;
+                }
+                None => {
+                    word.push(out);
+                    num::push(out, v, *dec, st.keep_point);
+                    last[k] = i64::MIN;
+                }
             }
-            out.c(' ');
-            out.s(word);
-            match s {
-                Some(s) => num::push_scaled(out, s, *dec, st.keep_point),
-                None => num::push(out, *v, *dec, st.keep_point),
-            }
-            last[k] = s;
             any = true;
         }
         if !any {
             // Nothing moved: still write one axis word, so the block stays a move.
             if let (Some((word, dec)), Some(v)) = (words.first(), b.target.first()) {
-                out.c(' ');
-                out.s(word);
+                word.push(out);
                 num::push(out, *v, *dec, st.keep_point);
             }
         }

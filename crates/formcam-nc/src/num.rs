@@ -30,7 +30,8 @@ pub(crate) struct Out {
 }
 
 impl Out {
-    fn new(vec: Vec<u8>) -> Self {
+    /// A buffer appending to `vec`.
+    pub(crate) fn new(vec: Vec<u8>) -> Self {
         Self {
             vec,
             buf: [0; CAP],
@@ -105,8 +106,14 @@ impl Out {
         }
     }
 
+    /// Appends bytes written elsewhere.
+    pub(crate) fn append(&mut self, b: &[u8]) {
+        self.flush();
+        self.vec.extend_from_slice(b);
+    }
+
     /// Takes the bytes out, flushed.
-    fn finish(mut self) -> Vec<u8> {
+    pub(crate) fn finish(mut self) -> Vec<u8> {
         self.flush();
         self.vec
     }
@@ -239,7 +246,10 @@ pub(crate) fn push_scaled(out: &mut Out, s: i64, decimals: u32, keep_point: bool
         two!(buf, p, u);
     }
     if u >= 10 {
-        two!(buf, p, u);
+        let r = PAIRS[(u % 100) as usize];
+        p -= 2;
+        buf[p & M] = r[0];
+        buf[(p + 1) & M] = r[1];
     } else {
         one!(buf, p, b'0' + u as u8);
     }

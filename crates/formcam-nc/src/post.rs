@@ -16,6 +16,30 @@
 //! | `iso` | `.nc` | `G00`/`G01 X12.` | `G93` … `G94` |
 //! | `linuxcnc` | `.ngc` | `G0`/`G1` | `G93` … `G94` |
 //! | `marlin-xab` | `.gcode` | `G0`/`G1` | converted: `F = travel / t * 60` |
+//!
+//! Notes per dialect:
+//!
+//! * Sinumerik 840D: every block numbered (`N10`, `N20`, …; comment lines
+//!   are not); single-letter axes are written `X12.5`, longer names (`J1`)
+//!   `J1=12.5`; header `G90 G94 G71`, end `M30`.
+//! * ISO: `%`, `O0001 (NAME)`, `G21 G90 G94`, two-digit `G00`/`G01`, whole
+//!   numbers with a decimal point (`X12.`, as Fanuc-style controls without
+//!   decimal-point programming would otherwise read micrometres), `M30`, `%`.
+//! * LinuxCNC: axes `X Y Z A B C U V W` only; `(PROGRAM NAME)`, `G21 G90 G94`, `M2`.
+//! * Marlin X/A/B: axes `X Y Z A B C` only; `G21`, `G90`, `G94` (Marlin answers
+//!   `G94` with "unknown command" and goes on), no end code. The travel of a
+//!   converted inverse-time block is the Euclidean norm of all axis deltas in
+//!   NC units, mm and degrees mixed, as FiberPath computes it; a block that
+//!   moves nothing keeps the previous feed. `G0` moves at the firmware's
+//!   rapid rate only where `G0_FEEDRATE` is configured.
+//! * In the `G93` dialects a `G93` block always carries `F`; the first
+//!   per-minute block after inverse time writes `G94` and its `F` again.
+//! * Comments: line breaks become spaces; in parenthesis comments `(`/`)`
+//!   become `[`/`]`.
+//!
+//! The G-code writers cut programs of 65 536 blocks or more into runs written
+//! by up to 8 threads (each run starting from the modal state the runs before
+//! it leave); the text is the same as written by one thread.
 
 mod cldata;
 mod gcode;

@@ -23,7 +23,8 @@ fn check(p: &Program, dialect: Dialect) {
     for (i, (a, b)) in p.blocks.iter().zip(&q.blocks).enumerate() {
         assert_eq!(a.kind, b.kind, "{dialect}: block {i} kind");
         for (k, axis) in p.axes.iter().enumerate() {
-            let tol = if axis.rotary { 0.5e-4 } else { 0.5e-3 } + 1e-9;
+            // Half a printed unit, and the rounding of v * 10^d in f64.
+            let tol = if axis.rotary { 0.5e-4 } else { 0.5e-3 } + 1e-9 + a.target[k].abs() * 1e-15;
             assert!(
                 (a.target[k] - b.target[k]).abs() <= tol,
                 "{dialect}: block {i} axis {}: {} read back as {}",
@@ -169,4 +170,21 @@ fn duration() {
     assert_eq!(p.block_time_s(0), None);
     assert_eq!(p.block_time_s(4), Some(0.25));
     assert_eq!(Program::default().duration_s(), None);
+}
+
+#[test]
+fn programs_long_enough_to_be_written_in_parallel() {
+    let xayb = vec![
+        AxisSpec::linear("X"),
+        AxisSpec::rotary("A"),
+        AxisSpec::linear("Y"),
+        AxisSpec::rotary("B"),
+    ];
+    check(&common::walk(xayb, 70_000), Dialect::Sinumerik840d);
+    let xab = vec![
+        AxisSpec::linear("X"),
+        AxisSpec::rotary("A"),
+        AxisSpec::rotary("B"),
+    ];
+    check(&common::walk(xab, 70_000), Dialect::MarlinXab);
 }

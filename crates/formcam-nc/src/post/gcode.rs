@@ -4,7 +4,7 @@
 use crate::num::{self, DEG, FEED, FEED_FINE, MM, Out, Word};
 use crate::post::push_comment_text;
 use crate::program::nc_travel;
-use crate::{Feed, Motion, NcError, Program};
+use crate::{Block, Feed, Motion, NcError, Program};
 
 /// Which program heading and end a dialect writes.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -229,61 +229,188 @@ fn footer(out: &mut Out, st: &Style, ln: &mut LineNo) {
     }
 }
 
+/// Programs with at least this many blocks are written by several threads.
+const PARALLEL_MIN: usize = 1 << 16;
+
 /// Writes `p` (already validated) in the style `st`.
 pub(super) fn write(p: &Program, st: &Style, out: &mut Out) -> Result<(), NcError> {
+    let threads = if p.blocks.len() >= PARALLEL_MIN {
+        std::thread::available_parallelism().map_or(1, |n| n.get().min(8))
+    } else {
+        1
+    };
+    write_in(p, st, out, threads)
+}
+
+/// Writes `p` with the blocks cut into `threads` runs written side by side.
+/// Each run starts from the modal state the runs before it leave
+/// ([`state_before`]), so the text is the same for any number of threads.
+fn write_in(p: &Program, st: &Style, out: &mut Out, threads: usize) -> Result<(), NcError> {
     let words = axis_words(p, st)?;
     let n = words.len();
-    out.reserve(256 + p.blocks.len() * (16 + 12 * n));
+    let per_block = 16 + 12 * n;
+    out.reserve(256 + p.blocks.len() * per_block);
     let mut ln = LineNo {
         on: st.line_numbers,
         next: 10,
     };
     header(out, p, st, &mut ln);
+    let first_n = ln.next;
+    let len = p.blocks.len();
+    let threads = threads.clamp(1, len.max(1));
+    if threads == 1 {
+        let mut state = state_before(p, st, 0, first_n);
+        write_blocks(p, st, &words, 0..len, &mut state, out);
+        ln.next = state.ln.next;
+    } else {
+        let chunk = len.div_ceil(threads);
+        let words = &words;
+        let runs: Vec<_> = (0..threads)
+            .map(|c| (c * chunk).min(len)..((c + 1) * chunk).min(len))
+            .collect();
+        std::thread::scope(|scope| {
+            // The first run goes straight into `out` on this thread, the
+            // others into buffers of their own, appended after it.
+            let handles: Vec<_> = runs[1..]
+                .iter()
+                .cloned()
+                .map(|range| {
+                    scope.spawn(move || {
+                        let mut o = Out::new(Vec::with_capacity(range.len() * per_block));
+                        let mut state = state_before(p, st, range.start, first_n);
+                        write_blocks(p, st, words, range, &mut state, &mut o);
+                        o.finish()
+                    })
+                })
+                .collect();
+            let mut state = state_before(p, st, 0, first_n);
+            write_blocks(p, st, words, runs[0].clone(), &mut state, out);
+            for h in handles {
+                let part = h.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
+                out.append(&part);
+            }
+        });
+        ln.next = first_n + 10 * len as u64;
+    }
+    footer(out, st, &mut ln);
+    Ok(())
+}
 
-    // Last printed scaled values; `i64::MIN` (never a scaled value): none.
-    let mut last: Vec<i64> = vec![i64::MIN; n];
+/// The modal state of the writer between blocks.
+struct State<'a> {
+    /// Last printed scaled axis values; `i64::MIN` (never a scaled value): none.
+    last: Vec<i64>,
+    /// `G93` is active.
+    g93: bool,
+    /// The last per-minute feed written (scaled, decimals).
+    last_feed: Option<(i64, u32)>,
+    /// The previous block's end point.
+    prev: Option<&'a [f64]>,
+    ln: LineNo,
+}
+
+/// The feed word of a block: (value, decimals, written even when unchanged).
+fn block_feed(st: &Style, b: &Block, prev: Option<&[f64]>) -> Option<(f64, u32, bool)> {
+    match (b.kind, b.feed) {
+        (Motion::Linear, Feed::PerMinute(f)) => Some((f, FEED, false)),
+        (Motion::Linear, Feed::InverseTime(t)) => match st.inverse {
+            Inverse::G93 => Some((60.0 / t, FEED_FINE, true)),
+            Inverse::Convert => {
+                let travel = prev.map_or(0.0, |q| nc_travel(q, &b.target));
+                (travel > 0.0).then(|| (travel / t * 60.0, FEED_FINE, false))
+            }
+        },
+        _ => None,
+    }
+}
+
+/// The state the writer is in before block `start` (`first_n`: the first
+/// block's N number). After any block every axis's last printed value is
+/// that block's rounded value; `G93` is on when the last linear block was
+/// inverse time (in the `G93` dialects); the remembered feed is the last
+/// per-minute feed written since.
+fn state_before<'a>(p: &'a Program, st: &Style, start: usize, first_n: u64) -> State<'a> {
+    let n = p.axes.len();
+    let prev = start.checked_sub(1).map(|i| p.blocks[i].target.as_slice());
+    let last = match prev {
+        Some(t) => p
+            .axes
+            .iter()
+            .zip(t)
+            .map(|(a, v)| num::scaled(*v, if a.rotary { DEG } else { MM }).unwrap_or(i64::MIN))
+            .collect(),
+        None => vec![i64::MIN; n],
+    };
     let mut g93 = false;
-    let mut last_feed: Option<(i64, u32)> = None;
-    let mut prev: Option<&[f64]> = None;
-    for b in &p.blocks {
+    let mut last_feed = None;
+    for i in (0..start).rev() {
+        let b = &p.blocks[i];
+        if b.kind != Motion::Linear {
+            continue;
+        }
+        if st.inverse == Inverse::G93 && matches!(b.feed, Feed::InverseTime(_)) {
+            g93 = true;
+            break;
+        }
+        let before = i.checked_sub(1).map(|j| p.blocks[j].target.as_slice());
+        if let Some((f, dec, false)) = block_feed(st, b, before) {
+            last_feed = num::scaled(f, dec).map(|s| (s, dec));
+            break;
+        }
+    }
+    State {
+        last,
+        g93,
+        last_feed,
+        prev,
+        ln: LineNo {
+            on: st.line_numbers,
+            next: first_n + 10 * start as u64,
+        },
+    }
+}
+
+/// Writes blocks `range` of `p` from `state`.
+fn write_blocks<'a>(
+    p: &'a Program,
+    st: &Style,
+    words: &[(AxisWord, u32)],
+    range: std::ops::Range<usize>,
+    state: &mut State<'a>,
+    out: &mut Out,
+) {
+    let n = words.len();
+    let State {
+        last,
+        g93,
+        last_feed,
+        prev,
+        ln,
+    } = state;
+    let last = &mut last[..n];
+    for b in &p.blocks[range] {
         ln.push(out);
-        // (value, decimals, written even when unchanged)
-        let mut feed: Option<(f64, u32, bool)> = None;
+        let feed = block_feed(st, b, *prev);
         match b.kind {
             Motion::Rapid => out.s(st.motion[0]),
             Motion::Linear => {
-                match b.feed {
-                    Feed::PerMinute(f) => {
-                        if g93 {
-                            out.s("G94 ");
-                            g93 = false;
-                            last_feed = None;
-                        }
-                        feed = Some((f, FEED, false));
+                match (b.feed, st.inverse) {
+                    (Feed::PerMinute(_), _) if *g93 => {
+                        out.s("G94 ");
+                        *g93 = false;
+                        *last_feed = None;
                     }
-                    Feed::InverseTime(t) => match st.inverse {
-                        Inverse::G93 => {
-                            if !g93 {
-                                out.s("G93 ");
-                                g93 = true;
-                            }
-                            feed = Some((60.0 / t, FEED_FINE, true));
-                        }
-                        Inverse::Convert => {
-                            let travel = prev.map_or(0.0, |q| nc_travel(q, &b.target));
-                            if travel > 0.0 {
-                                feed = Some((travel / t * 60.0, FEED_FINE, false));
-                            }
-                        }
-                    },
-                    Feed::None => {}
+                    (Feed::InverseTime(_), Inverse::G93) if !*g93 => {
+                        out.s("G93 ");
+                        *g93 = true;
+                    }
+                    _ => {}
                 }
                 out.s(st.motion[1]);
             }
         }
         let mut any = false;
         let target = &b.target[..n];
-        let last = &mut last[..n];
         for k in 0..n {
             let v = target[k];
             let (word, dec) = &words[k];
@@ -311,11 +438,11 @@ pub(super) fn write(p: &Program, st: &Style, out: &mut Out) -> Result<(), NcErro
         }
         if let Some((f, dec, always)) = feed {
             let key = num::scaled(f, dec).map(|s| (s, dec));
-            if always || key.is_none() || key != last_feed {
+            if always || key.is_none() || key != *last_feed {
                 out.s(" F");
                 num::push(out, f, dec, st.keep_point);
                 if !always {
-                    last_feed = key;
+                    *last_feed = key;
                 }
             }
         }
@@ -330,8 +457,88 @@ pub(super) fn write(p: &Program, st: &Style, out: &mut Out) -> Result<(), NcErro
             }
         }
         out.c('\n');
-        prev = Some(&b.target);
+        *prev = Some(&b.target);
     }
-    footer(out, st, &mut ln);
-    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+
+    use super::*;
+    use crate::AxisSpec;
+
+    /// Mixed blocks: rapids, per-minute and inverse-time runs, blocks that
+    /// move nothing, huge values, comments.
+    fn mixed(n: usize) -> Program {
+        let mut p = Program::new(
+            "MIXED",
+            vec![
+                AxisSpec::linear("X"),
+                AxisSpec::rotary("A"),
+                AxisSpec::linear("Y"),
+            ],
+        );
+        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut rnd = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let mut pos = [0.0f64; 3];
+        for i in 0..n {
+            let r = rnd();
+            if r % 7 != 0 {
+                pos[(r % 3) as usize] += ((r >> 8) % 2000) as f64 * 0.0137 - 13.0;
+            }
+            if r % 997 == 0 {
+                pos[1] = 1e300;
+            } else if pos[1] > 1e200 {
+                pos[1] = 0.0;
+            }
+            let feed = (r >> 20) % 100;
+            let mut b = match (r >> 40) % 10 {
+                0 => Block::rapid(pos.to_vec()),
+                1..=4 => Block::linear(pos.to_vec(), Feed::PerMinute(100.0 + (feed / 30) as f64)),
+                _ => Block::linear(pos.to_vec(), Feed::InverseTime(0.01 + (feed / 50) as f64)),
+            };
+            if i % 1000 == 0 {
+                b.comment = Some(format!("c{i}"));
+            }
+            p.blocks.push(b);
+        }
+        p
+    }
+
+    #[test]
+    fn the_same_text_for_any_number_of_threads() {
+        let p = mixed(20_000);
+        for st in [&SINUMERIK, &ISO, &LINUXCNC] {
+            let one = {
+                let mut o = Out::new(Vec::new());
+                write_in(&p, st, &mut o, 1).unwrap();
+                o.finish()
+            };
+            for threads in [2, 3, 7, 64] {
+                let mut o = Out::new(Vec::new());
+                write_in(&p, st, &mut o, threads).unwrap();
+                assert!(o.finish() == one, "{} with {threads} threads", st.name);
+            }
+        }
+        let mut p = p;
+        p.axes = vec![
+            AxisSpec::linear("X"),
+            AxisSpec::rotary("A"),
+            AxisSpec::rotary("B"),
+        ];
+        let mut o = Out::new(Vec::new());
+        write_in(&p, &MARLIN, &mut o, 1).unwrap();
+        let one = o.finish();
+        for threads in [2, 5, 16] {
+            let mut o = Out::new(Vec::new());
+            write_in(&p, &MARLIN, &mut o, threads).unwrap();
+            assert!(o.finish() == one, "marlin with {threads} threads");
+        }
+    }
 }

@@ -17,7 +17,12 @@ pub fn load(path: &Path) -> Result<Machine, CliError> {
             path.display()
         ))
     })?;
-    Machine::from_toml(&text).map_err(|e| match e {
+    parse(path, &text)
+}
+
+/// A machine from the text of its file (named `path` in errors).
+pub fn parse(path: &Path, text: &str) -> Result<Machine, CliError> {
+    Machine::from_toml(text).map_err(|e| match e {
         MachineError::Syntax {
             line,
             column,

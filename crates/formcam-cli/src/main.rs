@@ -6,6 +6,7 @@ mod output;
 mod plot;
 mod program;
 mod wind;
+mod windfile;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -116,6 +117,9 @@ fn main() -> ExitCode {
                 Some(WindCommand::Eye { job, output }) => Ok((job, output, wind::Stage::Eye)),
                 Some(WindCommand::Axes { job, output }) => Ok((job, output, wind::Stage::Axes)),
                 None => match (whole, whole_out) {
+                    (Some(job), Some(output)) if job.extension().is_some_and(|e| e == "wind") => {
+                        return finish(wind::run_wind_file(&job, &output).map(|s| println!("{s}")));
+                    }
                     (Some(job), Some(output)) => Ok((job, output, wind::Stage::Program)),
                     _ => Err(CliError(
                         "wind: give a job and -o OUTDIR (or a subcommand: path, eye, axes)".into(),
@@ -139,6 +143,10 @@ fn main() -> ExitCode {
         } => machine::fk(&machine, &axes, &output).map(|s| println!("{s}")),
         Command::Demo { examples, output } => wind::run_demo(&examples, &output),
     };
+    finish(result)
+}
+
+fn finish(result: Result<(), CliError>) -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(CliError(msg)) => {

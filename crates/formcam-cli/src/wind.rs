@@ -398,7 +398,6 @@ fn add_eye_summary(summary: &mut serde_json::Value, t: &EyeTrajectory) {
 /// the layers before it, its circuits cut into blocks and timed, and all of them
 /// written as one program.
 fn run_layers(job_path: &Path, out: &Path) -> Result<String, CliError> {
-    let t0 = Instant::now();
     let job = read_job(job_path)?;
     let at = |msg: String| CliError(format!("{}: {msg}", job_path.display()));
     if job.winding.is_some() {
@@ -408,15 +407,6 @@ fn run_layers(job_path: &Path, out: &Path) -> Result<String, CliError> {
         .mandrel
         .ok_or_else(|| at("[mandrel]: missing table".into()))?;
     let dir = job_path.parent().map(Path::to_path_buf).unwrap_or_default();
-    let read = |name: &str| {
-        let p: PathBuf = dir.join(name);
-        fs::read_to_string(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))
-    };
-    let eye = job
-        .eye
-        .map(|e| e.spec(read))
-        .transpose()
-        .map_err(|e| at(e.to_string()))?;
     let (file, method) = job
         .machine
         .as_ref()
@@ -424,9 +414,73 @@ fn run_layers(job_path: &Path, out: &Path) -> Result<String, CliError> {
         .transpose()?
         .ok_or_else(|| at("[machine]: missing table (a program needs a machine)".into()))?;
     let m = crate::machine::load(&file)?;
-    let motion = job.motion.unwrap_or_default();
-    let post = job.post.unwrap_or_default();
-    let layers = job.layer.unwrap_or_default();
+    run_layered(
+        job_path,
+        Layered {
+            mandrel: mspec,
+            layers: job.layer.unwrap_or_default(),
+            eye: job.eye,
+            machine: (m, file, method),
+            motion: job.motion.unwrap_or_default(),
+            post: job.post.unwrap_or_default(),
+        },
+        out,
+    )
+}
+
+/// `formcam wind JOB.wind -o OUT`: a Cyclone/FiberPath job on the X/A/B winder,
+/// written for Marlin X/A/B unless the job says otherwise.
+pub fn run_wind_file(path: &Path, out: &Path) -> Result<String, CliError> {
+    let imported = crate::windfile::read(path)?;
+    let label = PathBuf::from("machines/winder-xab.toml (built in)");
+    let m = crate::machine::parse(&label, crate::windfile::MACHINE)?;
+    run_layered(
+        path,
+        Layered {
+            mandrel: imported.mandrel,
+            layers: imported.layers,
+            eye: Some(imported.eye),
+            machine: (m, label, IkMethod::Auto),
+            motion: MotionJob::default(),
+            post: PostJob {
+                dialect: Some("marlin-xab".into()),
+                template: None,
+            },
+        },
+        out,
+    )
+}
+
+/// A multi-layer job, read from TOML or imported.
+struct Layered {
+    mandrel: MandrelSpec,
+    layers: Vec<WindingSpec>,
+    eye: Option<EyeJob>,
+    machine: (Machine, PathBuf, IkMethod),
+    motion: MotionJob,
+    post: PostJob,
+}
+
+fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliError> {
+    let t0 = Instant::now();
+    let at = |msg: String| CliError(format!("{}: {msg}", job_path.display()));
+    let dir = job_path.parent().map(Path::to_path_buf).unwrap_or_default();
+    let read = |name: &str| {
+        let p: PathBuf = dir.join(name);
+        fs::read_to_string(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))
+    };
+    let Layered {
+        mandrel: mspec,
+        layers,
+        eye,
+        machine: (m, file, method),
+        motion,
+        post,
+    } = job;
+    let eye = eye
+        .map(|e| e.spec(read))
+        .transpose()
+        .map_err(|e| at(e.to_string()))?;
     if layers.is_empty() {
         return Err(at("[[layer]]: no layers".into()));
     }
@@ -684,12 +738,12 @@ pub fn run_demo(examples: &Path, out: &Path) -> Result<(), CliError> {
             ))
         })?
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml" || x == "wind"))
         .collect();
     jobs.sort();
     if jobs.is_empty() {
         return Err(CliError(format!(
-            "{}: no *.toml jobs found",
+            "{}: no *.toml or *.wind jobs found",
             examples.display()
         )));
     }
@@ -698,6 +752,10 @@ pub fn run_demo(examples: &Path, out: &Path) -> Result<(), CliError> {
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
+        if job.extension().is_some_and(|x| x == "wind") {
+            println!("{}", run_wind_file(job, &out.join(&name))?);
+            continue;
+        }
         let j = read_job(job)?;
         let stage = if j.machine.is_some() && (j.post.is_some() || j.layer.is_some()) {
             Stage::Program

@@ -538,3 +538,85 @@ fn a_multi_layer_job_grows_the_mandrel_and_writes_one_program() {
     assert!(!st.status.success());
     assert!(String::from_utf8_lossy(&st.stderr).contains("[[layer]]"));
 }
+
+#[test]
+fn a_wind_file_runs_on_the_xab_winder_and_writes_marlin() {
+    let out = scratch("wind-file").join("out");
+    let st = formcam()
+        .arg("wind")
+        .arg(examples().join("tube-fiberpath.wind"))
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["layers"], 3);
+    assert_eq!(summary["machine"], "X/A/B winder");
+    let layers = summary["per_layer"].as_array().unwrap();
+    assert_eq!(
+        layers[1]["alpha_equator_deg"].as_f64().unwrap().round(),
+        45.0
+    );
+    let program = std::fs::read_to_string(out.join("program.gcode")).unwrap();
+    assert!(program.contains("G21") && program.contains("G90") && program.contains("G94"));
+    assert!(
+        program
+            .lines()
+            .any(|l| l.starts_with("G1 ") && l.contains('A') && l.contains('X'))
+    );
+    assert!(!program.contains('Y') && !program.contains("G93"));
+}
+
+#[test]
+fn bad_wind_files_fail_with_one_line() {
+    let good = std::fs::read_to_string(examples().join("tube-fiberpath.wind")).unwrap();
+    for (name, text, want) in [
+        (
+            "nan",
+            good.replace("\"width\": 8", "\"width\": NaN"),
+            "tube.wind",
+        ),
+        (
+            "unknown",
+            good.replace("\"width\": 8", "\"widht\": 8"),
+            "widht",
+        ),
+        ("major", good.replace("\"1.0\"", "\"2.0\""), "schemaVersion"),
+        (
+            "negative",
+            good.replace("\"thickness\": 0.4", "\"thickness\": -0.4"),
+            "towParameters.thickness",
+        ),
+        (
+            "angle",
+            good.replace("\"windAngle\": 45", "\"windAngle\": 95"),
+            "layers[1].windAngle",
+        ),
+    ] {
+        let dir = scratch(&format!("wind-{name}"));
+        let path = dir.join("tube.wind");
+        std::fs::write(&path, text).unwrap();
+        let out = dir.join("out");
+        let st = formcam()
+            .arg("wind")
+            .arg(&path)
+            .arg("-o")
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(!st.status.success(), "{name}");
+        assert!(!out.exists(), "{name}: wrote output");
+        let err = String::from_utf8_lossy(&st.stderr).trim_end().to_string();
+        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        assert!(
+            err.contains("tube.wind") && err.contains(want),
+            "{name}: {err}"
+        );
+    }
+}

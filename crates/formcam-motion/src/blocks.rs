@@ -73,7 +73,11 @@ pub fn fit_blocks(
     let mut fits = |s: usize, e: usize| -> bool {
         let (a, b) = (row(s), row(e));
         let span = x[e] - x[s];
-        for k in s + 1..e {
+        // A chord strays furthest near its middle: look there first, so that a
+        // block that does not fit is rejected at once.
+        let mid = (s + e) / 2;
+        let order = (mid..=mid).filter(|&k| k > s && k < e).chain(s + 1..e);
+        for k in order {
             let t = (x[k] - x[s]) / span;
             let r = row(k);
             for j in 0..width {

@@ -9,8 +9,8 @@ use formcam_machine::Machine;
 use formcam_machine::Target;
 use formcam_machine::ik::AxisTrack;
 use formcam_motion::{
-    AxisLimits, Deviation, Timing, Tolerance, check_timing, deltas, fit_blocks, global, pairwise,
-    preliminary_times,
+    AxisLimits, Deviation, Timing, Tolerance, check_acceleration, check_timing, deltas, fit_blocks,
+    global, pairwise, preliminary_times, with_acceleration,
 };
 use formcam_nc::{AxisSpec, Block, Dialect, Feed, Program, Template, write, write_template};
 use serde::Deserialize;
@@ -32,6 +32,10 @@ pub struct MotionJob {
     pub tau_s: Option<f64>,
     /// Which block times the program uses: `global` (default) or `pairwise`.
     pub times: Option<String>,
+    /// Also keep the machine's acceleration limits (`a_max_*` of its axes):
+    /// neighbouring blocks slowed until each velocity change can ramp within
+    /// half of each block (default false).
+    pub acceleration: Option<bool>,
 }
 
 /// The `[post]` table of a job.
@@ -180,6 +184,21 @@ pub fn layer_blocks(
                 "motion.times: \"{other}\" is not one of global, pairwise"
             )));
         }
+    };
+    let ramped;
+    let chosen: &Timing = if motion.acceleration.unwrap_or(false) {
+        let a_max: Vec<f64> = m.axes.iter().map(|a| a.a_max).collect();
+        ramped = with_acceleration(&d, chosen, &limits, &a_max).map_err(limit_err)?;
+        if let Some(&(b, k, e)) = check_acceleration(&d, &ramped.times, &a_max).first() {
+            return Err(here(format!(
+                "motion: block {} breaks the acceleration limit of axis {} by {e:.3e}",
+                b + 1,
+                m.axes[k].name
+            )));
+        }
+        &ramped
+    } else {
+        chosen
     };
     if let Some(&(b, k, e)) = check_timing(&d, &chosen.times, &limits).first() {
         return Err(here(format!(

@@ -620,3 +620,32 @@ fn bad_wind_files_fail_with_one_line() {
         );
     }
 }
+
+#[test]
+fn acceleration_limits_lengthen_the_program() {
+    let job = std::fs::read_to_string(examples().join("vessel-program-840d.toml"))
+        .unwrap()
+        .replace("# acceleration = true", "acceleration = true #")
+        .replace("../machines/", &format!("{}/", machines().display()));
+    let dir = scratch("acceleration");
+    let path = dir.join("job.toml");
+    std::fs::write(&path, job).unwrap();
+    let out = dir.join("out");
+    let st = formcam()
+        .arg("wind")
+        .arg(&path)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let with = summary["program_time_s"].as_f64().unwrap();
+    let global = summary["program_time_global_s"].as_f64().unwrap();
+    assert!(with > global, "{with} vs {global}");
+}

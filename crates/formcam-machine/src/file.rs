@@ -146,6 +146,10 @@ pub struct LinkSpec {
     pub v_max_mm_min: Option<f64>,
     /// Prismatic velocity-jump limit between blocks, mm per minute.
     pub dv_max_mm_min: Option<f64>,
+    /// Revolute acceleration limit, degrees per s² (the option `[motion] acceleration`).
+    pub a_max_deg_s2: Option<f64>,
+    /// Prismatic acceleration limit, mm per s².
+    pub a_max_mm_s2: Option<f64>,
     /// Home value of a driven revolute joint (where inverse kinematics starts), degrees.
     pub home_deg: Option<f64>,
     /// Home value of a driven prismatic joint, mm.

@@ -126,6 +126,8 @@ pub struct Axis {
     pub v_max: f64,
     /// Velocity-jump limit between blocks, rad/s or mm/s.
     pub dv_max: f64,
+    /// Acceleration limit, rad/s² or mm/s² (`inf` when not given).
+    pub a_max: f64,
     /// Home value (rad or mm), where inverse kinematics starts.
     pub home: f64,
 }
@@ -307,6 +309,7 @@ fn joint(l: &LinkSpec, place: &str) -> Result<(Joint, Option<Axis>), MachineErro
         ("dv_max_deg_min", l.dv_max_deg_min),
         ("value_deg", l.value_deg),
         ("home_deg", l.home_deg),
+        ("a_max_deg_s2", l.a_max_deg_s2),
     ];
     let mm = [
         ("min_mm", l.min_mm),
@@ -315,8 +318,9 @@ fn joint(l: &LinkSpec, place: &str) -> Result<(Joint, Option<Axis>), MachineErro
         ("dv_max_mm_min", l.dv_max_mm_min),
         ("value_mm", l.value_mm),
         ("home_mm", l.home_mm),
+        ("a_max_mm_s2", l.a_max_mm_s2),
     ];
-    let (wrong, own, why): (Vec<_>, [(&str, Option<f64>); 6], &str) = match kind {
+    let (wrong, own, why): (Vec<_>, [(&str, Option<f64>); 7], &str) = match kind {
         JointKind::Revolute => (mm.to_vec(), deg, "a revolute joint takes degrees (*_deg)"),
         JointKind::Prismatic => (deg.to_vec(), mm, "a prismatic joint takes mm (*_mm)"),
         JointKind::Fixed => (
@@ -356,6 +360,7 @@ fn joint(l: &LinkSpec, place: &str) -> Result<(Joint, Option<Axis>), MachineErro
     }
     let v_max = positive(own[2].1, place, own[2].0)? * scale / 60.0;
     let dv_max = positive(own[3].1, place, own[3].0)? * scale / 60.0;
+    let a_max = positive(own[6].1, place, own[6].0)? * scale;
     let axis = match (l.driven, &l.axis) {
         (true, _) if kind == JointKind::Fixed => {
             return Err(MachineError::field(
@@ -402,6 +407,7 @@ fn joint(l: &LinkSpec, place: &str) -> Result<(Joint, Option<Axis>), MachineErro
                 max,
                 v_max,
                 dv_max,
+                a_max,
                 home,
             })
         }

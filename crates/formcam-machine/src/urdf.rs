@@ -134,6 +134,8 @@ pub fn links_from_urdf(text: &str) -> Result<Vec<LinkSpec>, MachineError> {
                 dv_max_mm_min: None,
                 home_deg: None,
                 home_mm: None,
+                a_max_deg_s2: None,
+                a_max_mm_s2: None,
                 value_deg: None,
                 value_mm: None,
                 visuals,

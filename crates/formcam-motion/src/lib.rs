@@ -17,5 +17,6 @@ mod times;
 pub use blocks::{Deviation, Tolerance, fit_blocks};
 pub use error::MotionError;
 pub use times::{
-    AxisLimits, Timing, check_timing, deltas, global, global_by_cone, pairwise, preliminary_times,
+    AxisLimits, Timing, check_acceleration, check_timing, deltas, global, global_by_cone, pairwise,
+    preliminary_times, with_acceleration,
 };

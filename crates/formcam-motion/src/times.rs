@@ -520,6 +520,111 @@ fn restore_feasibility(mu: &mut [f64], a: &[f64], rho: &[f64], n: usize, w: usiz
     }
 }
 
+/// Per-axis acceleration limits on top of the velocity-jump limits (an option:
+/// real controllers ramp the velocity between blocks). The velocity change
+/// between neighbouring blocks must be reachable at `a_max` (per axis, units/s²)
+/// within half of each block: `|v_i - v_j| <= a_max (t_i + t_j) / 2`. Where it
+/// is not, both blocks are slowed by the same factor; where that breaks a
+/// velocity jump with another neighbour, the faster block of that pair is
+/// slowed too. The sweeps only ever slow blocks and stop when every pair holds:
+/// a feasible timing, not an optimum.
+pub fn with_acceleration(
+    deltas: &[f64],
+    timing: &Timing,
+    limits: &[AxisLimits],
+    a_max: &[f64],
+) -> Result<Timing, MotionError> {
+    let w = a_max.len().max(1);
+    for (k, a) in a_max.iter().enumerate() {
+        if a.is_nan() || *a <= 0.0 {
+            return Err(MotionError::Field {
+                field: format!("axis #{}: a_max", k + 1),
+                reason: format!("must be > 0, got {a}"),
+            });
+        }
+    }
+    let n = timing.times.len();
+    let mut t = timing.times.clone();
+    let mut mu = timing.mu.clone();
+    if n < 2 {
+        return Ok(timing.clone());
+    }
+    for _ in 0..100_000 {
+        let mut changed = false;
+        for i in 0..n {
+            let j = (i + 1) % n;
+            let (mut si, mut sj) = (1.0f64, 1.0f64);
+            for k in 0..w {
+                let (vi, vj) = (deltas[i * w + k] / t[i], deltas[j * w + k] / t[j]);
+                let jump = (vi - vj).abs();
+                let allowed = a_max[k] * 0.5 * (t[i] + t[j]);
+                if a_max[k].is_finite() && jump > allowed * (1.0 + 1e-12) {
+                    // Velocities scale by s, times by 1/s: s^2 <= allowed / jump.
+                    let s = (allowed / jump).sqrt() * (1.0 - 1e-12);
+                    si = si.min(s);
+                    sj = sj.min(s);
+                }
+                let rho = limits.get(k).map_or(f64::INFINITY, |l| l.dv_max);
+                if jump > rho * (1.0 + 1e-12) {
+                    if vi * vj < 0.0 {
+                        let s = rho / jump * (1.0 - 1e-12);
+                        si = si.min(s);
+                        sj = sj.min(s);
+                    } else if vi.abs() > vj.abs() {
+                        si = si.min((vj.abs() + rho) / vi.abs() * (1.0 - 1e-12));
+                    } else {
+                        sj = sj.min((vi.abs() + rho) / vj.abs() * (1.0 - 1e-12));
+                    }
+                }
+            }
+            if si < 1.0 || sj < 1.0 {
+                t[i] /= si;
+                t[j] /= sj;
+                mu[i] *= si;
+                mu[j] *= sj;
+                changed = true;
+            }
+        }
+        if !changed {
+            let total = t.iter().sum();
+            return Ok(Timing {
+                mu,
+                times: t,
+                total,
+            });
+        }
+    }
+    Err(MotionError::Solver(
+        "the acceleration sweeps did not settle".into(),
+    ))
+}
+
+/// Broken acceleration limits: `(block, axis, excess)` where the velocity change
+/// to the next block exceeds `a_max (t_i + t_j) / 2` (relative tolerance 1e-9).
+pub fn check_acceleration(
+    deltas: &[f64],
+    times: &[f64],
+    a_max: &[f64],
+) -> Vec<(usize, usize, f64)> {
+    let w = a_max.len().max(1);
+    let n = times.len();
+    let mut out = Vec::new();
+    if n < 2 {
+        return out;
+    }
+    for i in 0..n {
+        let j = (i + 1) % n;
+        for (k, a) in a_max.iter().enumerate() {
+            let jump = (deltas[i * w + k] / times[i] - deltas[j * w + k] / times[j]).abs();
+            let allowed = a * 0.5 * (times[i] + times[j]);
+            if jump > allowed * (1.0 + 1e-9) {
+                out.push((i, k, jump - allowed));
+            }
+        }
+    }
+    out
+}
+
 /// Broken limits of the block times `times`: `(block, axis, excess)` for every
 /// velocity above `v_max` and every jump above `dv_max` (cyclic), with a relative
 /// tolerance of 1e-9.

@@ -3,8 +3,8 @@
 #![allow(clippy::unwrap_used)]
 
 use formcam_motion::{
-    AxisLimits, Tolerance, check_timing, deltas, fit_blocks, global, global_by_cone, pairwise,
-    preliminary_times,
+    AxisLimits, Tolerance, check_acceleration, check_timing, deltas, fit_blocks, global,
+    global_by_cone, pairwise, preliminary_times, with_acceleration,
 };
 use proptest::prelude::*;
 
@@ -253,4 +253,28 @@ fn windows_round_the_reversals_give_the_cone_optimum() {
         win.total,
         pw.total
     );
+}
+
+#[test]
+fn acceleration_limits_slow_the_blocks_and_keep_every_other_limit() {
+    let (x, v) = trajectory(20_001);
+    let tol = Tolerance {
+        axes: vec![1e-3, 0.01],
+        position_mm: None,
+    };
+    let ends = fit_blocks(&x, &v, 2, &tol, None).unwrap();
+    let d = deltas(&v, 2, &ends);
+    let lim = limits();
+    let t_star = preliminary_times(&d, &lim, 0.004).unwrap();
+    let gl = global(&d, &t_star, &lim).unwrap();
+    let a_max = [2.0, 200.0];
+    assert!(
+        !check_acceleration(&d, &gl.times, &a_max).is_empty(),
+        "the limit must bind"
+    );
+    let acc = with_acceleration(&d, &gl, &lim, &a_max).unwrap();
+    assert!(check_acceleration(&d, &acc.times, &a_max).is_empty());
+    assert!(check_timing(&d, &acc.times, &lim).is_empty());
+    assert!(acc.total > gl.total);
+    assert!(with_acceleration(&d, &gl, &lim, &[0.0, 1.0]).is_err());
 }

@@ -524,6 +524,17 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
             .grown(grown)
             .and_then(|g| g.build(read))
             .map_err(field)?;
+        // A hoop layer on a vessel covers its cylinder: planned on that cylinder,
+        // its targets moved to where the cylinder starts.
+        let (mandrel, z_shift) = match (&mandrel, kind.as_str()) {
+            (Mandrel::Vessel(v), "hoop") => {
+                let (z1, z2) = v.cylinder_range();
+                let cyl = formcam_geom::Cylinder::new(v.radius(), z2 - z1)
+                    .map_err(|e| field(e.into()))?;
+                (Mandrel::Cylinder(cyl), z1)
+            }
+            _ => (mandrel, 0.0),
+        };
         let spec = w.layer_spec(&mandrel).map_err(field)?;
         let layer = plan_layer(&mandrel, &spec).map_err(field)?;
         let traj = if m.roles.kind == MachineKind::Placement {
@@ -534,7 +545,11 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
                 .ok_or_else(|| at("[eye]: missing table".into()))?;
             Some(eye_trajectory(&mandrel, &layer, spec).map_err(field)?)
         };
-        let targets = targets_for(&m, &mandrel, &layer, traj.as_ref(), eye.as_ref());
+        let mut targets = targets_for(&m, &mandrel, &layer, traj.as_ref(), eye.as_ref());
+        for t in &mut targets {
+            t.point.z += z_shift;
+            t.path_point.z += z_shift;
+        }
         let track = solve(&m, &targets, method)
             .map_err(|e| at(format!("{label}: {}: {e}", file.display())))?;
         let b = crate::program::layer_blocks(

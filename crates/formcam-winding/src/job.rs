@@ -415,7 +415,7 @@ impl WindingSpec {
             _ if hoop => {
                 return Err(WindingError::field(
                     "winding.kind",
-                    "hoop layers are wound on tubes (cylinder or cone mandrels)",
+                    "hoop layers are wound on tubes and on a vessel's cylinder (multi-layer jobs)",
                 ));
             }
             Mandrel::Cylinder(_) | Mandrel::Cone(_) => {

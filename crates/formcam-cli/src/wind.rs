@@ -485,39 +485,36 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
         return Err(at("[[layer]]: no layers".into()));
     }
     let tau = motion.tau_s.unwrap_or(0.004);
+    // 1. Plan every layer in order: each on the mandrel grown by those before.
+    enum LayerPlan {
+        Skip(f64),
+        Wind {
+            mandrel: Box<Mandrel>,
+            z_shift: f64,
+            layer: Box<Layer>,
+            grown: f64,
+            thickness: f64,
+        },
+    }
     let mut grown = 0.0;
-    let mut fibre = 0.0;
-    let mut blocks: Vec<crate::program::LayerBlocks> = Vec::new();
-    let mut per_layer = Vec::new();
+    let mut plans = Vec::with_capacity(layers.len());
     for (i, w) in layers.iter().enumerate() {
         // Errors name the layer: `layer[2].band_width`.
         let field = |e: formcam_winding::WindingError| {
             at(e.to_string()
                 .replacen("winding.", &format!("layer[{}].", i + 1), 1))
         };
-        let kind = w.kind.clone().unwrap_or_else(|| "helical".into());
-        let label = format!("layer {} ({kind})", i + 1);
-        if kind == "skip" {
-            let from = blocks
-                .last()
-                .and_then(|b| b.blocks.last())
-                .map(|b| b.0.clone())
-                .ok_or_else(|| {
-                    at(format!(
-                        "layer[{}]: a skip layer needs a layer before it",
-                        i + 1
-                    ))
-                })?;
+        if w.kind.as_deref() == Some("skip") {
             let turn = w.mandrel_rotation_deg.ok_or_else(|| {
                 at(format!(
                     "layer[{}].mandrel_rotation_deg: missing: how far the mandrel turns, degrees",
                     i + 1
                 ))
             })?;
-            let b = crate::program::skip_blocks(job_path, &label, &m, &from, turn, tau)?;
-            per_layer
-                .push(json!({ "layer": i + 1, "kind": kind, "blocks": 1, "time_s": b.times[0] }));
-            blocks.push(b);
+            if i == 0 {
+                return Err(at("layer[1]: a skip layer needs a layer before it".into()));
+            }
+            plans.push(LayerPlan::Skip(turn));
             continue;
         }
         let mandrel = mspec
@@ -526,8 +523,8 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
             .map_err(field)?;
         // A hoop layer on a vessel covers its cylinder: planned on that cylinder,
         // its targets moved to where the cylinder starts.
-        let (mandrel, z_shift) = match (&mandrel, kind.as_str()) {
-            (Mandrel::Vessel(v), "hoop") => {
+        let (mandrel, z_shift) = match (&mandrel, w.kind.as_deref()) {
+            (Mandrel::Vessel(v), Some("hoop")) => {
                 let (z1, z2) = v.cylinder_range();
                 let cyl = formcam_geom::Cylinder::new(v.radius(), z2 - z1)
                     .map_err(|e| field(e.into()))?;
@@ -537,15 +534,39 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
         };
         let spec = w.layer_spec(&mandrel).map_err(field)?;
         let layer = plan_layer(&mandrel, &spec).map_err(field)?;
-        let traj = if m.roles.kind == MachineKind::Placement {
-            None
-        } else {
-            let spec = eye
-                .as_ref()
-                .ok_or_else(|| at("[eye]: missing table".into()))?;
-            Some(eye_trajectory(&mandrel, &layer, spec).map_err(field)?)
+        // The layer's thickness where the mandrel is widest.
+        let thickness = layer
+            .points
+            .iter()
+            .zip(&layer.thickness)
+            .max_by(|a, b| a.0.r.total_cmp(&b.0.r))
+            .map_or(spec.band_thickness, |(_, t)| *t);
+        plans.push(LayerPlan::Wind {
+            mandrel: Box::new(mandrel),
+            z_shift,
+            layer: Box::new(layer),
+            grown,
+            thickness,
+        });
+        grown += thickness;
+    }
+    if m.roles.kind != MachineKind::Placement && eye.is_none() {
+        return Err(at("[eye]: missing table".into()));
+    }
+    // 2. Eye, axes and blocks of every winding layer, one thread per layer.
+    let kind_of = |i: usize| layers[i].kind.clone().unwrap_or_else(|| "helical".into());
+    let wind = |i: usize, mandrel: &Mandrel, z_shift: f64, layer: &Layer| {
+        let label = format!("layer {} ({})", i + 1, kind_of(i));
+        let traj = match (&eye, m.roles.kind) {
+            (Some(spec), MachineKind::Winder) => {
+                Some(eye_trajectory(mandrel, layer, spec).map_err(|e| {
+                    at(e.to_string()
+                        .replacen("winding.", &format!("layer[{}].", i + 1), 1))
+                })?)
+            }
+            _ => None,
         };
-        let mut targets = targets_for(&m, &mandrel, &layer, traj.as_ref(), eye.as_ref());
+        let mut targets = targets_for(&m, mandrel, layer, traj.as_ref(), eye.as_ref());
         for t in &mut targets {
             t.point.z += z_shift;
             t.path_point.z += z_shift;
@@ -561,29 +582,90 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
             &motion,
             layer.pattern.circuits,
         )?;
-        // The layer's thickness where the mandrel is widest.
-        let thick = layer
-            .points
+        Ok::<_, CliError>((b, track.limits_ok(), track.max_residual_mm()))
+    };
+    let wound: Vec<Option<Result<_, CliError>>> = std::thread::scope(|s| {
+        let handles: Vec<_> = plans
             .iter()
-            .zip(&layer.thickness)
-            .max_by(|a, b| a.0.r.total_cmp(&b.0.r))
-            .map_or(spec.band_thickness, |(_, t)| *t);
-        per_layer.push(json!({
-            "layer": i + 1,
-            "kind": kind,
-            "mandrel_growth_mm": grown,
-            "alpha_equator_deg": layer.report.alpha_equator_rad.to_degrees(),
-            "circuits": layer.pattern.circuits,
-            "blocks": b.blocks.len(),
-            "time_s": b.times[0],
-            "thickness_mm": thick,
-            "fibre_length_mm": layer.report.fibre_length_mm,
-            "limits_ok": track.limits_ok(),
-            "max_ik_residual_mm": track.max_residual_mm(),
-        }));
-        grown += thick;
-        fibre += layer.report.fibre_length_mm;
-        blocks.push(b);
+            .enumerate()
+            .map(|(i, p)| match p {
+                LayerPlan::Wind {
+                    mandrel,
+                    z_shift,
+                    layer,
+                    ..
+                } => {
+                    let wind = &wind;
+                    Some(s.spawn(move || wind(i, mandrel, *z_shift, layer)))
+                }
+                LayerPlan::Skip(_) => None,
+            })
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| {
+                h.map(|h| {
+                    h.join()
+                        .unwrap_or_else(|_| Err(at("a layer's worker thread failed".into())))
+                })
+            })
+            .collect()
+    });
+    // 3. In order: the layers' blocks (a skip starts where the layer before ends).
+    let mut fibre = 0.0;
+    let mut blocks: Vec<crate::program::LayerBlocks> = Vec::new();
+    let mut per_layer = Vec::new();
+    for (i, (plan, result)) in plans.iter().zip(wound).enumerate() {
+        let kind = kind_of(i);
+        let label = format!("layer {} ({kind})", i + 1);
+        match (plan, result) {
+            (LayerPlan::Skip(turn), _) => {
+                let from = blocks
+                    .last()
+                    .and_then(|b| b.blocks.last())
+                    .map(|b| b.0.clone())
+                    .ok_or_else(|| {
+                        at(format!(
+                            "layer[{}]: a skip layer needs a layer before it",
+                            i + 1
+                        ))
+                    })?;
+                let b = crate::program::skip_blocks(job_path, &label, &m, &from, *turn, tau)?;
+                per_layer.push(
+                    json!({ "layer": i + 1, "kind": kind, "blocks": 1, "time_s": b.times[0] }),
+                );
+                blocks.push(b);
+            }
+            (
+                LayerPlan::Wind {
+                    layer,
+                    grown,
+                    thickness,
+                    ..
+                },
+                Some(result),
+            ) => {
+                let (b, limits_ok, residual) = result?;
+                per_layer.push(json!({
+                    "layer": i + 1,
+                    "kind": kind,
+                    "mandrel_growth_mm": grown,
+                    "alpha_equator_deg": layer.report.alpha_equator_rad.to_degrees(),
+                    "circuits": layer.pattern.circuits,
+                    "blocks": b.blocks.len(),
+                    "time_s": b.times[0],
+                    "thickness_mm": thickness,
+                    "fibre_length_mm": layer.report.fibre_length_mm,
+                    "limits_ok": limits_ok,
+                    "max_ik_residual_mm": residual,
+                }));
+                fibre += layer.report.fibre_length_mm;
+                blocks.push(b);
+            }
+            (LayerPlan::Wind { .. }, None) => {
+                return Err(at(format!("layer[{}]: not computed", i + 1)));
+            }
+        }
     }
     let stem = job_path
         .file_stem()

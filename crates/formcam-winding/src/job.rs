@@ -49,6 +49,9 @@ pub struct MandrelSpec {
     pub file: Option<String>,
     /// Profile: spline smoothing (0 = interpolate).
     pub smoothing: Option<f64>,
+    /// Profile: a radial offset added to every `r` of the table, mm (multi-layer
+    /// jobs grow it by the thickness of the layers laid).
+    pub offset_mm: Option<f64>,
 }
 
 /// `mu` as users write it: a number, `"auto"` or `"minimax"`.
@@ -226,19 +229,19 @@ fn dome_shape(
 impl MandrelSpec {
     /// The mandrel grown by `t` mm of laid band: every radius (and the domes'
     /// crown and knuckle radii) larger by `t`; the polar openings and lengths stay.
-    /// Ellipsoidal domes keep their axis ratio (the offset of an ellipse is not
-    /// an ellipse: an approximation); profiles cannot grow yet.
+    /// Ellipsoidal domes keep their axis ratio, and a profile's `r` grows by `t`
+    /// at every `z` (neither is the normal offset: approximations on slopes).
     pub fn grown(&self, t: f64) -> Result<MandrelSpec, WindingError> {
         if t == 0.0 {
             return Ok(self.clone());
         }
-        if self.kind.as_deref() == Some("profile") {
-            return Err(WindingError::field(
-                "mandrel.kind",
-                "a profile mandrel cannot grow by the layers yet: one layer per job",
-            ));
-        }
         let add = |v: Option<f64>| v.map(|v| v + t);
+        if self.kind.as_deref() == Some("profile") {
+            return Ok(MandrelSpec {
+                offset_mm: Some(self.offset_mm.unwrap_or(0.0) + t),
+                ..self.clone()
+            });
+        }
         Ok(MandrelSpec {
             radius: add(self.radius),
             radius_start: add(self.radius_start),
@@ -330,7 +333,16 @@ impl MandrelSpec {
                     WindingError::field("mandrel.file", "missing: a CSV file of z,r points (mm)")
                 })?;
                 let text = read(file).map_err(|e| WindingError::field("mandrel.file", e))?;
-                let t = Tabulated::from_csv_str(&text, self.smoothing.unwrap_or(0.0))
+                let offset = self.offset_mm.unwrap_or(0.0);
+                if !offset.is_finite() {
+                    return Err(WindingError::field("mandrel.offset_mm", "must be finite"));
+                }
+                let t = formcam_geom::read_pairs(&text, ("z", "r"))
+                    .and_then(|pts| {
+                        let pts: Vec<(f64, f64)> =
+                            pts.into_iter().map(|(z, r)| (z, r + offset)).collect();
+                        Tabulated::new(&pts, self.smoothing.unwrap_or(0.0))
+                    })
                     .map_err(|e| WindingError::field("mandrel.file", format!("{file}: {e}")))?;
                 Ok(Mandrel::Profile(t))
             }

@@ -384,9 +384,21 @@ pub fn read_cldata(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
     // (value, inverse)
     let mut feed: Option<(f64, bool)> = None;
     let mut in_header = true;
+    // Records continued after a `$` are joined (errors name their first line).
+    let mut records: Vec<(usize, String)> = Vec::new();
+    let mut open = false;
     for (i, raw) in text.lines().enumerate() {
-        let lineno = i + 1;
         let line = raw.trim();
+        let cont = !line.starts_with("$$") && line.ends_with('$') && !line.ends_with("$$");
+        let body = if cont { &line[..line.len() - 1] } else { line };
+        match records.last_mut() {
+            Some((_, r)) if open => r.push_str(body),
+            _ => records.push((i + 1, body.to_string())),
+        }
+        open = cont;
+    }
+    for (lineno, line) in &records {
+        let (lineno, line) = (*lineno, line.as_str());
         if let Some(c) = line.strip_prefix("$$") {
             let c = c.trim().to_string();
             if in_header {

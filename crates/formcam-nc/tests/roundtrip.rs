@@ -188,3 +188,26 @@ fn programs_long_enough_to_be_written_in_parallel() {
     ];
     check(&common::walk(xab, 70_000), Dialect::MarlinXab);
 }
+
+#[test]
+fn long_cldata_records_continue_within_72_columns() {
+    // Seven axes with large values: each GOTO needs a continuation line.
+    let axes: Vec<AxisSpec> = ["A", "J1", "J2", "J3", "J4", "J5", "J6"]
+        .iter()
+        .map(|n| AxisSpec::rotary(*n))
+        .collect();
+    let mut p = common::walk(axes, 300);
+    for b in &mut p.blocks {
+        for v in &mut b.target {
+            *v = *v * 1000.0 - 123_456.789_1;
+        }
+    }
+    let mut text = String::new();
+    write(&p, Dialect::Cldata, &mut text).unwrap();
+    assert!(
+        text.lines().all(|l| l.len() <= 72),
+        "a record runs past column 72"
+    );
+    assert!(text.lines().any(|l| l.ends_with(",$")));
+    check(&p, Dialect::Cldata);
+}

@@ -19,12 +19,16 @@
 //! `FEDRAT/L/t*60,MMPM` (`L` the Euclidean travel of the linear axes), so that
 //! APT consumers that only know per-minute feeds keep the block time; when no
 //! linear axis moves (or the block is the first) it is `FEDRAT/60/t,INVERS`
-//! (1/min). Lines are not split at 72 columns.
+//! (1/min). A record longer than 72 columns is continued on the next line
+//! after a `$` (APT's continuation mark).
 
 use crate::num::{self, DEG, FEED, FEED_FINE, MM, Out};
 use crate::post::push_comment_text;
 use crate::program::linear_travel;
 use crate::{Feed, Motion, Program};
+
+/// Columns of an APT record (a punched card's).
+const CARD: usize = 72;
 
 /// Writes `p` (already validated).
 pub(super) fn write(p: &Program, out: &mut Out) {
@@ -64,11 +68,33 @@ pub(super) fn write(p: &Program, out: &mut Out) {
             (Motion::Linear, Feed::None) => {}
         }
         out.s("GOTO/");
-        for (k, (v, d)) in b.target.iter().zip(&decs).enumerate() {
-            if k > 0 {
-                out.c(',');
+        if n <= 4 {
+            // At most 5 + 4 * 14 columns: never longer than a card.
+            for (k, (v, d)) in b.target.iter().zip(&decs).enumerate() {
+                if k > 0 {
+                    out.c(',');
+                }
+                num::push(out, *v, *d, false);
             }
-            num::push(out, *v, *d, false);
+        } else {
+            let mut col = 5;
+            for (k, (v, d)) in b.target.iter().zip(&decs).enumerate() {
+                let mut one = Out::new(Vec::with_capacity(24));
+                num::push(&mut one, *v, *d, false);
+                let bytes = one.finish();
+                // The value, its comma, and room for a `$` must fit in 72 columns.
+                if k > 0 {
+                    if col + 1 + bytes.len() + 2 > CARD {
+                        out.s(",$\n");
+                        col = 0;
+                    } else {
+                        out.c(',');
+                        col += 1;
+                    }
+                }
+                out.append(&bytes);
+                col += bytes.len();
+            }
         }
         out.c('\n');
         prev = Some(&b.target);

@@ -534,13 +534,16 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
         };
         let spec = w.layer_spec(&mandrel).map_err(field)?;
         let layer = plan_layer(&mandrel, &spec).map_err(field)?;
-        // The layer's thickness where the mandrel is widest.
-        let thickness = layer
-            .points
-            .iter()
-            .zip(&layer.thickness)
-            .max_by(|a, b| a.0.r.total_cmp(&b.0.r))
-            .map_or(spec.band_thickness, |(_, t)| *t);
+        // The layer's thickness where the mandrel is widest (one ply of the two
+        // for a one-way hoop).
+        let plies = if w.one_way == Some(true) { 0.5 } else { 1.0 };
+        let thickness = plies
+            * layer
+                .points
+                .iter()
+                .zip(&layer.thickness)
+                .max_by(|a, b| a.0.r.total_cmp(&b.0.r))
+                .map_or(spec.band_thickness, |(_, t)| *t);
         plans.push(LayerPlan::Wind {
             mandrel: Box::new(mandrel),
             z_shift,
@@ -570,6 +573,11 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
         for t in &mut targets {
             t.point.z += z_shift;
             t.path_point.z += z_shift;
+        }
+        if layers[i].one_way == Some(true) {
+            // A terminal hoop: the outgoing pass only.
+            let pass = layer.pass_path.length();
+            targets.retain(|t| t.x <= pass + 1e-9);
         }
         let track = solve(&m, &targets, method)
             .map_err(|e| at(format!("{label}: {}: {e}", file.display())))?;
@@ -656,6 +664,7 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
                     "time_s": b.times[0],
                     "thickness_mm": thickness,
                     "fibre_length_mm": layer.report.fibre_length_mm,
+                    "one_way": layers[i].one_way.unwrap_or(false),
                     "limits_ok": limits_ok,
                     "max_ik_residual_mm": residual,
                 }));

@@ -6,9 +6,9 @@
 //! a hoop layer; `helical` → `windAngle` (from the axis, as ours),
 //! `patternNumber`, `skipIndex`, `lockDegrees` as the least dwell at each end;
 //! `skip` → the mandrel turning `mandrelRotation` degrees. The eye runs parallel
-//! to the axis at the machine's eye radius. `leadInMM`, `leadOutDegrees`,
-//! `skipInitialNearLock`, a hoop's `terminal` and `defaultFeedRate` are read
-//! and checked but not used: the delivery head's rotation follows from the
+//! to the axis at the machine's eye radius; a `terminal` hoop is wound one way.
+//! `leadInMM`, `leadOutDegrees`, `skipInitialNearLock` and `defaultFeedRate`
+//! are read and checked but not used: the delivery head's rotation follows from the
 //! kinematics, the feeds from the machine's limits.
 
 use std::fs;
@@ -54,9 +54,8 @@ struct TowParameters {
 #[serde(tag = "windType", rename_all = "camelCase", deny_unknown_fields)]
 enum Layer {
     Hoop {
-        /// Read, not used: every hoop layer is wound out and back.
-        #[serde(default, rename = "terminal")]
-        _terminal: bool,
+        #[serde(default)]
+        terminal: bool,
     },
     #[serde(rename_all = "camelCase")]
     Helical {
@@ -152,8 +151,9 @@ pub fn read(path: &Path) -> Result<Imported, CliError> {
     for (i, l) in f.layers.iter().enumerate() {
         let field = |name: &str| format!("layers[{i}].{name}");
         layers.push(match l {
-            Layer::Hoop { .. } => WindingSpec {
+            Layer::Hoop { terminal } => WindingSpec {
                 kind: Some("hoop".into()),
+                one_way: terminal.then_some(true),
                 ..base.clone()
             },
             Layer::Helical {

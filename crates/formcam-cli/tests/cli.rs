@@ -649,3 +649,41 @@ fn acceleration_limits_lengthen_the_program() {
     let global = summary["program_time_global_s"].as_f64().unwrap();
     assert!(with > global, "{with} vs {global}");
 }
+
+#[test]
+fn a_one_way_hoop_lays_one_ply() {
+    let both = std::fs::read_to_string(examples().join("tube-layers-4axis.toml"))
+        .unwrap()
+        .replace("../machines/", &format!("{}/", machines().display()));
+    let one = both.replacen("kind = \"hoop\"\n", "kind = \"hoop\"\none_way = true\n", 1);
+    let run = |name: &str, text: &str| {
+        let dir = scratch(name);
+        let path = dir.join("job.toml");
+        std::fs::write(&path, text).unwrap();
+        let out = dir.join("out");
+        let st = formcam()
+            .arg("wind")
+            .arg(&path)
+            .arg("-o")
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(
+            st.status.success(),
+            "{}",
+            String::from_utf8_lossy(&st.stderr)
+        );
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        s["per_layer"][0].clone()
+    };
+    let (b, o) = (run("hoop-both", &both), run("hoop-one", &one));
+    assert_eq!(o["one_way"], true);
+    let (tb, to) = (
+        b["thickness_mm"].as_f64().unwrap(),
+        o["thickness_mm"].as_f64().unwrap(),
+    );
+    assert!((to - 0.5 * tb).abs() < 1e-12, "{to} vs {tb}");
+    assert!(o["time_s"].as_f64().unwrap() < b["time_s"].as_f64().unwrap());
+}

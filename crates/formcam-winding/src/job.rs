@@ -95,6 +95,9 @@ pub struct WindingSpec {
     pub kind: Option<String>,
     /// Skip layers: how far the mandrel turns, degrees.
     pub mandrel_rotation_deg: Option<f64>,
+    /// Hoop layers: one pass only, ending at the far end (a terminal hoop);
+    /// default false (out and back).
+    pub one_way: Option<bool>,
 }
 
 /// One `mu_segments` entry.
@@ -403,6 +406,12 @@ impl WindingSpec {
             return Err(WindingError::field(
                 "winding.mandrel_rotation_deg",
                 "only for kind = \"skip\"",
+            ));
+        }
+        if self.one_way.is_some() && !hoop {
+            return Err(WindingError::field(
+                "winding.one_way",
+                "only for kind = \"hoop\"",
             ));
         }
         let ends = match mandrel {

@@ -49,7 +49,7 @@ pub fn deltas(values: &[f64], width: usize, ends: &[usize]) -> Vec<f64> {
     out
 }
 
-fn check_limits(limits: &[AxisLimits], tau: f64) -> Result<(), MotionError> {
+fn check_limits(limits: &[AxisLimits]) -> Result<(), MotionError> {
     for (i, l) in limits.iter().enumerate() {
         for (name, v) in [("v_max", l.v_max), ("dv_max", l.dv_max)] {
             if v.is_nan() || v <= 0.0 {
@@ -60,13 +60,29 @@ fn check_limits(limits: &[AxisLimits], tau: f64) -> Result<(), MotionError> {
             }
         }
     }
-    if !(tau.is_finite() && tau > 0.0) {
-        return Err(MotionError::Field {
-            field: "tau".into(),
-            reason: format!("the least block time must be a finite number > 0 s, got {tau}"),
-        });
-    }
     Ok(())
+}
+
+/// What every timing method starts from: the blocks' velocity coefficients
+/// `a_i^k = Delta_i^k / t*_i` (so `v_i^k = a_i^k mu_i`) and the jump limits.
+struct Jumps {
+    a: Vec<f64>,
+    rho: Vec<f64>,
+    n: usize,
+    w: usize,
+}
+
+impl Jumps {
+    fn new(deltas: &[f64], t_star: &[f64], limits: &[AxisLimits]) -> Result<Self, MotionError> {
+        check_limits(limits)?;
+        let w = limits.len().max(1);
+        Ok(Self {
+            a: coefficients(deltas, t_star, w),
+            rho: limits.iter().map(|l| l.dv_max).collect(),
+            n: t_star.len(),
+            w,
+        })
+    }
 }
 
 /// Eq. 17: `t*_i = max(max_k |Delta_i^k| / f_max^k, tau)`.
@@ -75,7 +91,13 @@ pub fn preliminary_times(
     limits: &[AxisLimits],
     tau: f64,
 ) -> Result<Vec<f64>, MotionError> {
-    check_limits(limits, tau)?;
+    check_limits(limits)?;
+    if !(tau.is_finite() && tau > 0.0) {
+        return Err(MotionError::Field {
+            field: "tau".into(),
+            reason: format!("the least block time must be a finite number > 0 s, got {tau}"),
+        });
+    }
     let w = limits.len();
     Ok(deltas
         .chunks_exact(w.max(1))
@@ -174,11 +196,7 @@ pub fn pairwise(
     t_star: &[f64],
     limits: &[AxisLimits],
 ) -> Result<Timing, MotionError> {
-    check_limits(limits, 1.0)?;
-    let w = limits.len().max(1);
-    let n = t_star.len();
-    let a = coefficients(deltas, t_star, w);
-    let rho: Vec<f64> = limits.iter().map(|l| l.dv_max).collect();
+    let Jumps { a, rho, n, w } = Jumps::new(deltas, t_star, limits)?;
     let mut mu = vec![1.0; n];
     if n < 2 {
         return Ok(Timing::from_mu(t_star, mu));
@@ -215,14 +233,10 @@ pub fn global(
     t_star: &[f64],
     limits: &[AxisLimits],
 ) -> Result<Timing, MotionError> {
-    check_limits(limits, 1.0)?;
-    let w = limits.len().max(1);
-    let n = t_star.len();
-    let a = coefficients(deltas, t_star, w);
+    let Jumps { a, rho, n, w } = Jumps::new(deltas, t_star, limits)?;
     if n < 2 {
         return Ok(Timing::from_mu(t_star, vec![1.0; n]));
     }
-    let rho: Vec<f64> = limits.iter().map(|l| l.dv_max).collect();
     if (0..n).all(|i| !reverses(&a, i, (i + 1) % n, w)) {
         return Ok(Timing::from_mu(t_star, greatest(&a, &rho, n, w)));
     }
@@ -236,11 +250,7 @@ pub fn global_by_cone(
     t_star: &[f64],
     limits: &[AxisLimits],
 ) -> Result<Timing, MotionError> {
-    check_limits(limits, 1.0)?;
-    let w = limits.len().max(1);
-    let n = t_star.len();
-    let a = coefficients(deltas, t_star, w);
-    let rho: Vec<f64> = limits.iter().map(|l| l.dv_max).collect();
+    let Jumps { a, rho, n, w } = Jumps::new(deltas, t_star, limits)?;
     if n < 2 {
         return Ok(Timing::from_mu(t_star, vec![1.0; n]));
     }

@@ -69,8 +69,8 @@ fn positive(job: &Path, field: &str, v: f64) -> Result<f64, CliError> {
     }
 }
 
-/// NC units: mm, degrees for rotary axes.
-fn nc(m: &Machine, a: usize, v: f64) -> f64 {
+/// Axis values in NC units: mm, and degrees for rotary axes.
+pub fn nc(m: &Machine, a: usize, v: f64) -> f64 {
     if m.axes[a].is_rotary() {
         v.to_degrees()
     } else {

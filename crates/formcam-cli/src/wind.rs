@@ -17,7 +17,7 @@ use serde_json::json;
 
 use crate::CliError;
 use crate::output::write_all;
-use crate::program::{MotionJob, PostJob};
+use crate::program::{MotionJob, PostJob, nc};
 
 /// A job file. Tables of other processes are kept for their commands.
 #[derive(Debug, Deserialize)]
@@ -713,15 +713,6 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
     ))
 }
 
-/// Axis values in NC units: mm, and degrees for rotary axes.
-fn nc_value(m: &Machine, a: usize, v: f64) -> f64 {
-    if m.axes[a].is_rotary() {
-        v.to_degrees()
-    } else {
-        v
-    }
-}
-
 fn axes_csv(m: &Machine, targets: &[Target], track: &AxisTrack) -> Vec<u8> {
     let mut s = String::with_capacity(targets.len() * 16 * (m.axes.len() + 1));
     s.push('x');
@@ -732,7 +723,7 @@ fn axes_csv(m: &Machine, targets: &[Target], track: &AxisTrack) -> Vec<u8> {
     for (t, q) in targets.iter().zip(track.rows()) {
         let _ = write!(s, "{}", t.x);
         for (a, v) in q.iter().enumerate() {
-            let _ = write!(s, ",{}", nc_value(m, a, *v));
+            let _ = write!(s, ",{}", nc(m, a, *v));
         }
         s.push('\n');
     }
@@ -780,8 +771,8 @@ fn add_axes_summary(
         .iter()
         .enumerate()
         .map(|(a, ax)| {
-            let lo = t.rows().map(|q| nc_value(m, a, q[a])).fold(f64::INFINITY, f64::min);
-            let hi = t.rows().map(|q| nc_value(m, a, q[a])).fold(f64::NEG_INFINITY, f64::max);
+            let lo = t.rows().map(|q| nc(m, a, q[a])).fold(f64::INFINITY, f64::min);
+            let hi = t.rows().map(|q| nc(m, a, q[a])).fold(f64::NEG_INFINITY, f64::max);
             json!({ "axis": ax.name, "min": lo, "max": hi, "unit": if ax.is_rotary() { "deg" } else { "mm" } })
         })
         .collect();

@@ -556,13 +556,14 @@ pub fn solve(m: &Machine, targets: &[Target], method: IkMethod) -> Result<AxisTr
     let moves = moves(m);
     let equations = |t, q: &[f64]| Equations::new(m, t, &unknowns, &moves, q);
     let mut before = q.clone();
+    let mut poses = Vec::with_capacity(m.links.len());
     for (i, t) in targets.iter().enumerate() {
         let first = i == 0;
         if let Some(l) = &lathe {
             l.solve(t, &prev, &mut q);
         } else {
             if let Some(sp) = &spindle {
-                let poses = m.poses(&q);
+                m.poses_into(&q, &mut poses);
                 q[sp.axis] = sp.angle(t, &poses[m.roles.mandrel], q[sp.axis], prev[sp.axis]);
             }
             if !unknowns.is_empty() {
@@ -584,7 +585,7 @@ pub fn solve(m: &Machine, targets: &[Target], method: IkMethod) -> Result<AxisTr
                     }
                 }
                 if first {
-                    nearest_home_branch(m, t, &unknowns, &mut q);
+                    nearest_home_branch(m, t, &unknowns, &moves, &mut q);
                 }
             }
         }
@@ -682,10 +683,15 @@ fn newton(mut eq: Equations<'_>) -> Option<Vec<f64>> {
 /// At the first point: a rotary axis that can turn half a turn without moving
 /// the payout point or breaking the orientation equations (an eye roller is the
 /// same roller either way round) takes the half turn nearest its home value.
-fn nearest_home_branch(m: &Machine, t: &Target, unknowns: &[usize], q: &mut [f64]) {
-    let moves = moves(m);
+fn nearest_home_branch(
+    m: &Machine,
+    t: &Target,
+    unknowns: &[usize],
+    moves: &[(bool, bool)],
+    q: &mut [f64],
+) {
     let norm = |q: &[f64]| {
-        let e = Equations::new(m, t, unknowns, &moves, q).eval(false);
+        let e = Equations::new(m, t, unknowns, moves, q).eval(false);
         e.r.iter().map(|v| v * v).sum::<f64>().sqrt()
     };
     let base = norm(q);

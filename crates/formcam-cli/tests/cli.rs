@@ -49,8 +49,7 @@ fn wind_path_writes_csv_and_summary() {
     let header = lines.next().unwrap();
     assert!(header.starts_with("s,z,r,v,alpha,c,mu"));
     assert_eq!(lines.count(), 2001);
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_of(&out);
     for key in [
         "turn_angle_pass_rad",
         "turn_angle_circuit_rad",
@@ -264,8 +263,7 @@ fn wind_eye_writes_the_trajectory_and_its_summary() {
         "{header}"
     );
     assert_eq!(csv.lines().count(), 1 + 1001);
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_of(&out);
     assert_eq!(summary["eye_mode"], "pull-speed");
     assert_eq!(summary["constraints_ok"], true);
     assert!(summary["violations"].as_array().unwrap().is_empty());
@@ -331,6 +329,33 @@ fn bad_eye_tables_fail_with_one_line_naming_the_field() {
     assert!(err.contains("eye.curve"), "{err}");
 }
 
+/// The summary.json of an output folder.
+fn summary_of(out: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+}
+
+/// Runs `formcam wind` on a job given as text (written to a scratch folder)
+/// and checks that it succeeds; returns its summary.
+fn winds(name: &str, job: &str) -> serde_json::Value {
+    let dir = scratch(name);
+    let path = dir.join("job.toml");
+    std::fs::write(&path, job).unwrap();
+    let out = dir.join("out");
+    let st = formcam()
+        .arg("wind")
+        .arg(&path)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        st.status.success(),
+        "{name}: {}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    summary_of(&out)
+}
+
 fn machines() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../machines")
 }
@@ -338,8 +363,7 @@ fn machines() -> PathBuf {
 #[test]
 fn wind_axes_writes_axes_that_forward_kinematics_takes_back_to_the_eye() {
     let out = succeeds("axes", &["wind", "axes", "vessel-axes-4axis.toml"]);
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_of(&out);
     assert_eq!(summary["machine"], "4-axis winder");
     assert_eq!(summary["axes"], serde_json::json!(["A", "X", "Y", "B"]));
     assert_eq!(summary["limits_ok"], true);
@@ -435,8 +459,7 @@ fn bad_machines_fail_with_one_line_naming_the_file_and_link() {
 #[test]
 fn wind_writes_the_whole_program() {
     let out = succeeds("program", &["wind", "vessel-program-840d.toml"]);
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_of(&out);
     for key in [
         "blocks",
         "program_time_s",
@@ -495,8 +518,7 @@ fn a_program_beyond_a_limit_is_refused() {
 #[test]
 fn a_multi_layer_job_grows_the_mandrel_and_writes_one_program() {
     let out = succeeds("layers", &["wind", "tube-layers-4axis.toml"]);
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_of(&out);
     assert_eq!(summary["layers"], 4);
     let layers = summary["per_layer"].as_array().unwrap();
     let kinds: Vec<&str> = layers.iter().map(|l| l["kind"].as_str().unwrap()).collect();
@@ -554,8 +576,7 @@ fn a_wind_file_runs_on_the_xab_winder_and_writes_marlin() {
         "{}",
         String::from_utf8_lossy(&st.stderr)
     );
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_of(&out);
     assert_eq!(summary["layers"], 3);
     assert_eq!(summary["machine"], "X/A/B winder");
     let layers = summary["per_layer"].as_array().unwrap();
@@ -627,24 +648,7 @@ fn acceleration_limits_lengthen_the_program() {
         .unwrap()
         .replace("# acceleration = true", "acceleration = true #")
         .replace("../machines/", &format!("{}/", machines().display()));
-    let dir = scratch("acceleration");
-    let path = dir.join("job.toml");
-    std::fs::write(&path, job).unwrap();
-    let out = dir.join("out");
-    let st = formcam()
-        .arg("wind")
-        .arg(&path)
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(
-        st.status.success(),
-        "{}",
-        String::from_utf8_lossy(&st.stderr)
-    );
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = winds("acceleration", &job);
     let with = summary["program_time_s"].as_f64().unwrap();
     let global = summary["program_time_global_s"].as_f64().unwrap();
     assert!(with > global, "{with} vs {global}");
@@ -656,28 +660,7 @@ fn a_one_way_hoop_lays_one_ply() {
         .unwrap()
         .replace("../machines/", &format!("{}/", machines().display()));
     let one = both.replacen("kind = \"hoop\"\n", "kind = \"hoop\"\none_way = true\n", 1);
-    let run = |name: &str, text: &str| {
-        let dir = scratch(name);
-        let path = dir.join("job.toml");
-        std::fs::write(&path, text).unwrap();
-        let out = dir.join("out");
-        let st = formcam()
-            .arg("wind")
-            .arg(&path)
-            .arg("-o")
-            .arg(&out)
-            .output()
-            .unwrap();
-        assert!(
-            st.status.success(),
-            "{}",
-            String::from_utf8_lossy(&st.stderr)
-        );
-        let s: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
-                .unwrap();
-        s["per_layer"][0].clone()
-    };
+    let run = |name: &str, text: &str| winds(name, text)["per_layer"][0].clone();
     let (b, o) = (run("hoop-both", &both), run("hoop-one", &one));
     assert_eq!(o["one_way"], true);
     let (tb, to) = (

@@ -96,8 +96,9 @@ fn limits() -> Vec<AxisLimits> {
     ]
 }
 
-#[test]
-fn times_keep_every_limit_and_pairwise_is_never_better_than_global() {
+/// The trajectory's blocks (within 1e-3 rad and 0.01 mm), their axis motions,
+/// the limits and the preliminary times.
+fn blocks_of_the_trajectory() -> (Vec<f64>, Vec<AxisLimits>, Vec<f64>) {
     let (x, v) = trajectory(20_001);
     let tol = Tolerance {
         axes: vec![1e-3, 0.01],
@@ -107,6 +108,12 @@ fn times_keep_every_limit_and_pairwise_is_never_better_than_global() {
     let d = deltas(&v, 2, &ends);
     let lim = limits();
     let t_star = preliminary_times(&d, &lim, 0.004).unwrap();
+    (d, lim, t_star)
+}
+
+#[test]
+fn times_keep_every_limit_and_pairwise_is_never_better_than_global() {
+    let (d, lim, t_star) = blocks_of_the_trajectory();
     let pw = pairwise(&d, &t_star, &lim).unwrap();
     let gl = global(&d, &t_star, &lim).unwrap();
     assert!(check_timing(&d, &pw.times, &lim).is_empty());
@@ -257,15 +264,7 @@ fn windows_round_the_reversals_give_the_cone_optimum() {
 
 #[test]
 fn acceleration_limits_slow_the_blocks_and_keep_every_other_limit() {
-    let (x, v) = trajectory(20_001);
-    let tol = Tolerance {
-        axes: vec![1e-3, 0.01],
-        position_mm: None,
-    };
-    let ends = fit_blocks(&x, &v, 2, &tol, None).unwrap();
-    let d = deltas(&v, 2, &ends);
-    let lim = limits();
-    let t_star = preliminary_times(&d, &lim, 0.004).unwrap();
+    let (d, lim, t_star) = blocks_of_the_trajectory();
     let gl = global(&d, &t_star, &lim).unwrap();
     let a_max = [2.0, 200.0];
     assert!(

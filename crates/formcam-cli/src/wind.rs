@@ -129,8 +129,7 @@ fn targets_for(
 }
 
 /// Plans the layer of a job; errors name the job file and the field.
-fn plan(job_path: &Path) -> Result<Planned, CliError> {
-    let job = read_job(job_path)?;
+fn plan(job_path: &Path, job: Job) -> Result<Planned, CliError> {
     let here = |e: formcam_winding::WindingError| CliError(format!("{}: {e}", job_path.display()));
     let mspec = job
         .mandrel
@@ -218,11 +217,16 @@ pub enum Stage {
     Program,
 }
 
-/// `formcam wind path|eye|axes JOB -o OUT`; returns a one-line summary.
+/// `formcam wind [path|eye|axes] JOB -o OUT`; returns a one-line summary.
 pub fn run(job: &Path, out: &Path, stage: Stage) -> Result<String, CliError> {
-    if read_job(job)?.layer.is_some() {
+    run_job(job, read_job(job)?, out, stage)
+}
+
+/// [`run`] for a job already read from `job`.
+fn run_job(job: &Path, table: Job, out: &Path, stage: Stage) -> Result<String, CliError> {
+    if table.layer.is_some() {
         return if stage == Stage::Program {
-            run_layers(job, out)
+            run_layers(job, table, out)
         } else {
             Err(CliError(format!(
                 "{}: [[layer]]: a multi-layer job runs as a whole program (`formcam wind JOB -o \
@@ -239,7 +243,7 @@ pub fn run(job: &Path, out: &Path, stage: Stage) -> Result<String, CliError> {
         machine,
         motion,
         post,
-    } = plan(job)?;
+    } = plan(job, table)?;
     let name = job
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
@@ -397,8 +401,7 @@ fn add_eye_summary(summary: &mut serde_json::Value, t: &EyeTrajectory) {
 /// A multi-layer job (`[[layer]]`): each layer planned on the mandrel grown by
 /// the layers before it, its circuits cut into blocks and timed, and all of them
 /// written as one program.
-fn run_layers(job_path: &Path, out: &Path) -> Result<String, CliError> {
-    let job = read_job(job_path)?;
+fn run_layers(job_path: &Path, job: Job, out: &Path) -> Result<String, CliError> {
     let at = |msg: String| CliError(format!("{}: {msg}", job_path.display()));
     if job.winding.is_some() {
         return Err(at("[winding] and [[layer]]: give one of them".into()));
@@ -863,7 +866,7 @@ pub fn run_demo(examples: &Path, out: &Path) -> Result<(), CliError> {
         } else {
             Stage::Path
         };
-        let line = run(job, &out.join(&name), stage)?;
+        let line = run_job(job, j, &out.join(&name), stage)?;
         println!("{line}");
     }
     println!("{} jobs written under {}", jobs.len(), out.display());

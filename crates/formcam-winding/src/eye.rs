@@ -203,17 +203,21 @@ impl Band {
         }
     }
 
+    /// The eye's radial (`d`) and circumferential (`w`) offsets from the axis
+    /// in the path point's frame at free length `l`.
+    fn dw(&self, l: f64) -> (f64, f64) {
+        (self.p.r + l * self.ra, l * self.sa)
+    }
+
     /// Eye `Z` and `R` at free length `l`.
     fn eye_zr(&self, l: f64) -> (f64, f64) {
-        let d = self.p.r + l * self.ra;
-        let w = l * self.sa;
+        let (d, w) = self.dw(l);
         (self.p.z + l * self.ca, (d * d + w * w).sqrt())
     }
 
     /// Eye `Z`, `R` and `dR/dl` at free length `l`.
     fn zr(&self, l: f64) -> (f64, f64, f64) {
-        let d = self.p.r + l * self.ra;
-        let w = l * self.sa;
+        let (d, w) = self.dw(l);
         let rr = (d * d + w * w).sqrt();
         let dr_dl = if rr > 0.0 {
             (d * self.ra + w * self.sa) / rr
@@ -225,7 +229,7 @@ impl Band {
 
     /// Eye `V` at free length `l`.
     fn v(&self, l: f64) -> f64 {
-        let (w, d) = (l * self.sa, self.p.r + l * self.ra);
+        let (d, w) = self.dw(l);
         // w >= 0; the plain arctangent is cheaper where the quadrant is known.
         self.p.v + if d > 0.0 { (w / d).atan() } else { w.atan2(d) }
     }

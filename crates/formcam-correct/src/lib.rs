@@ -1,0 +1,1 @@
+//! Correction of a mould milling program from CMM measurements.

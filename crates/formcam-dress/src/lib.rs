@@ -1,0 +1,1 @@
+//! Dressing a grinding wheel for ball-screw nut raceways.

@@ -10,6 +10,9 @@
 //!   (FiberPath-style winders).
 //! * [`write_template`] writes it with a user [`Template`] read from TOML.
 //! * [`read_gcode`] and [`read_cldata`] read programs back.
+//! * [`read_toolpath`] reads a 3-axis milling program as lines and tool-path
+//!   nodes (arcs linearised); [`Toolpath::write`] writes it back with moved
+//!   nodes, every other line byte for byte.
 //!
 //! ```
 //! use formcam_nc::{AxisSpec, Block, Dialect, Feed, Program, write};
@@ -29,9 +32,11 @@ pub mod post;
 mod program;
 pub mod read;
 pub mod template;
+mod toolpath;
 
 pub use error::NcError;
 pub use post::{Dialect, write};
 pub use program::{AxisSpec, Block, Feed, Motion, Program};
 pub use read::{read_cldata, read_gcode};
 pub use template::{Template, write_template};
+pub use toolpath::{Flavor, Node, NodeKind, Toolpath, ToolpathOptions, read_toolpath};

@@ -764,10 +764,10 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
         if let Some(m) = &l.motion {
             for w in m.words.iter().flatten() {
                 let t = &text[w.range.clone()];
-                if let Some(p) = t.find('.') {
-                    if (t.len() - p - 1) as u32 != max_dec {
-                        padded = false;
-                    }
+                if let Some(p) = t.find('.')
+                    && (t.len() - p - 1) as u32 != max_dec
+                {
+                    padded = false;
                 }
             }
         }

@@ -1,0 +1,340 @@
+//! The correction of tool-path nodes: locate each node on the measured
+//! surface, interpolate the deviation there, move the node against it.
+
+use kiddo::{ImmutableKdTree, SquaredEuclidean};
+
+use crate::patch::Foot;
+use crate::vec3::{V3, axpy, dot, norm, scale, sub};
+use crate::{CorrectError, Grid, Interpolation, Surface};
+
+/// The milling tool, as the program's nodes describe it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Tool {
+    /// The nodes are the tool's contact points on the surface: a node moves
+    /// by the whole deviation vector (the seed's method).
+    Point,
+    /// A ball-end tool of this radius (mm): the nodes are the ball's centre.
+    /// The centre moves along the surface normal at the contact point by the
+    /// deviation's normal component, so the contact point moves by it.
+    Ball {
+        /// The ball's radius, mm.
+        radius: f64,
+    },
+}
+
+/// Correction options.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options {
+    /// Displacement = −gain × interpolated deviation (the mould moves
+    /// against the part's error); 1.0 cancels it.
+    pub gain: f64,
+    /// The tool.
+    pub tool: Tool,
+    /// Bilinear (the seed) or bicubic patches.
+    pub interpolation: Interpolation,
+    /// Nodes beyond the measured area by at most this much (mm) are corrected
+    /// with the deviation extrapolated linearly from the edge; farther ones
+    /// are left unchanged. 0 leaves every node outside unchanged.
+    pub margin_mm: f64,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            gain: 1.0,
+            tool: Tool::Point,
+            interpolation: Interpolation::Bilinear,
+            margin_mm: 0.0,
+        }
+    }
+}
+
+impl Options {
+    /// Checks the ranges; the messages name the option.
+    pub fn validate(&self) -> Result<(), CorrectError> {
+        let bad = |m: String| Err(CorrectError::Option(m));
+        if !(self.gain.is_finite() && self.gain > 0.0 && self.gain <= 2.0) {
+            return bad(format!("gain = {}: allowed (0, 2]", self.gain));
+        }
+        if let Tool::Ball { radius } = self.tool
+            && !(radius.is_finite() && radius > 0.0)
+        {
+            return bad(format!("tool ball radius = {radius} mm: must be > 0"));
+        }
+        if !(self.margin_mm.is_finite() && self.margin_mm >= 0.0) {
+            return bad(format!("margin = {} mm: must be >= 0", self.margin_mm));
+        }
+        Ok(())
+    }
+}
+
+/// Where a node lies relative to the measured area.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Placement {
+    /// On the measured area: corrected by interpolation.
+    Inside,
+    /// Beyond it within the margin: corrected by extrapolation.
+    Extrapolated,
+    /// Beyond the margin: unchanged.
+    Outside,
+    /// A coordinate of the node is unknown (not set by the program): unchanged.
+    Unknown,
+}
+
+/// The correction of one node.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NodeCorrection {
+    /// The displacement to add to the node, mm.
+    pub displacement: V3,
+    /// Where the node lies.
+    pub placement: Placement,
+    /// The facet `(i, j)` of the foot of the normal.
+    pub facet: (u32, u32),
+    /// The foot's parameters on the facet (clamped to `[0, 1]`).
+    pub s: f64,
+    /// See `s`.
+    pub t: f64,
+    /// The distance beyond the measured area, mm (0 inside).
+    pub outside_mm: f64,
+    /// The distance from the node to the nominal surface, mm.
+    pub distance_mm: f64,
+}
+
+/// Corrects nodes against one set of measurements.
+pub struct Corrector<'g> {
+    surface: Surface<'g>,
+    tree: ImmutableKdTree<f64, 3>,
+    options: Options,
+}
+
+impl<'g> Corrector<'g> {
+    /// Patches over `grid` and a k-d tree over the facet centres.
+    pub fn new(grid: &'g Grid, options: Options) -> Result<Self, CorrectError> {
+        options.validate()?;
+        let mut centres = Vec::with_capacity(grid.facets());
+        for j in 0..grid.nv - 1 {
+            for i in 0..grid.nu - 1 {
+                let c = [
+                    grid.at(i, j),
+                    grid.at(i + 1, j),
+                    grid.at(i, j + 1),
+                    grid.at(i + 1, j + 1),
+                ]
+                .into_iter()
+                .fold([0.0; 3], |a, p| axpy(a, 0.25, p));
+                centres.push(c);
+            }
+        }
+        Ok(Self {
+            surface: Surface::new(grid, options.interpolation),
+            tree: ImmutableKdTree::new_from_slice(&centres),
+            options,
+        })
+    }
+
+    /// The surface.
+    pub fn surface(&self) -> &Surface<'g> {
+        &self.surface
+    }
+
+    /// The facet and foot of the normal from `p`: from the facet whose
+    /// centre is nearest, walking to a neighbour while the foot sits on a
+    /// shared edge and the neighbour's foot is nearer.
+    pub fn locate(&self, p: V3) -> (usize, usize, f64, f64, f64) {
+        let (i, j, f) = self.walk(p);
+        (i, j, f.s, f.t, f.d2.sqrt())
+    }
+
+    fn walk(&self, p: V3) -> (usize, usize, Foot) {
+        let g = self.surface.grid();
+        let nf = g.nu - 1;
+        let c = self.tree.nearest_one::<SquaredEuclidean>(&p).item as usize;
+        let (mut i, mut j) = (c % nf, c / nf);
+        let mut foot = self.surface.foot(i, j, p, true);
+        for _ in 0..(g.nu + g.nv) {
+            let di: isize = if foot.s <= 0.0 && i > 0 {
+                -1
+            } else if foot.s >= 1.0 && i + 2 < g.nu {
+                1
+            } else {
+                0
+            };
+            let dj: isize = if foot.t <= 0.0 && j > 0 {
+                -1
+            } else if foot.t >= 1.0 && j + 2 < g.nv {
+                1
+            } else {
+                0
+            };
+            if di == 0 && dj == 0 {
+                break;
+            }
+            let mut best: Option<(usize, usize, Foot)> = None;
+            for (a, b) in [(di, 0), (0, dj), (di, dj)] {
+                if a == 0 && b == 0 {
+                    continue;
+                }
+                let (ni, nj) = (i.wrapping_add_signed(a), j.wrapping_add_signed(b));
+                let f = self.surface.foot(ni, nj, p, true);
+                let limit = best.map_or(foot.d2 * (1.0 - 1e-12) - 1e-18, |b| b.2.d2);
+                if f.d2 < limit {
+                    best = Some((ni, nj, f));
+                }
+            }
+            match best {
+                Some((ni, nj, f)) => (i, j, foot) = (ni, nj, f),
+                None => break,
+            }
+        }
+        (i, j, foot)
+    }
+
+    /// The correction of one node at `p` (mm).
+    pub fn correct_node(&self, p: V3) -> NodeCorrection {
+        if p.iter().any(|v| !v.is_finite()) {
+            return NodeCorrection {
+                displacement: [0.0; 3],
+                placement: Placement::Unknown,
+                facet: (0, 0),
+                s: 0.0,
+                t: 0.0,
+                outside_mm: 0.0,
+                distance_mm: f64::NAN,
+            };
+        }
+        let g = self.surface.grid();
+        let (i, j, foot) = self.walk(p);
+        let (s, t) = (foot.s, foot.t);
+        let at_edge = (s <= 0.0 && i == 0)
+            || (s >= 1.0 && i + 2 == g.nu)
+            || (t <= 0.0 && j == 0)
+            || (t >= 1.0 && j + 2 == g.nv);
+        let mut outside_mm = 0.0;
+        let mut ext = (s, t);
+        if at_edge {
+            let free = self.surface.foot(i, j, p, false);
+            let a = self.surface.bilinear(i, j, free.s, free.t).f;
+            let b = self
+                .surface
+                .bilinear(i, j, free.s.clamp(0.0, 1.0), free.t.clamp(0.0, 1.0))
+                .f;
+            let d = norm(sub(a, b));
+            let size = norm(sub(g.at(i + 1, j + 1), g.at(i, j)));
+            if d > 1e-9 * (1.0 + size) {
+                outside_mm = d;
+                ext = (free.s, free.t);
+            }
+        }
+        let placement = if outside_mm == 0.0 {
+            Placement::Inside
+        } else if outside_mm <= self.options.margin_mm {
+            Placement::Extrapolated
+        } else {
+            Placement::Outside
+        };
+        let displacement = match placement {
+            Placement::Outside | Placement::Unknown => [0.0; 3],
+            _ => {
+                let (d0, ds, dt) = self.surface.deviation(i, j, s, t);
+                let d = axpy(axpy(d0, ext.0 - s, ds), ext.1 - t, dt);
+                let k = -self.options.gain;
+                match self.options.tool {
+                    Tool::Point => scale(d, k),
+                    Tool::Ball { .. } => {
+                        let n = self.surface.normal_toward(i, j, s, t, p);
+                        scale(n, k * dot(d, n))
+                    }
+                }
+            }
+        };
+        NodeCorrection {
+            displacement,
+            placement,
+            facet: (i as u32, j as u32),
+            s,
+            t,
+            outside_mm,
+            distance_mm: foot.d2.sqrt(),
+        }
+    }
+
+    /// The corrections of all `nodes`, computed on all cores.
+    pub fn correct(&self, nodes: &[V3]) -> Vec<NodeCorrection> {
+        let threads = std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+            .min(nodes.len().div_ceil(4096).max(1));
+        if threads <= 1 {
+            return nodes.iter().map(|&p| self.correct_node(p)).collect();
+        }
+        let chunk = nodes.len().div_ceil(threads);
+        std::thread::scope(|sc| {
+            let handles: Vec<_> = nodes
+                .chunks(chunk)
+                .map(|part| {
+                    sc.spawn(move || {
+                        part.iter()
+                            .map(|&p| self.correct_node(p))
+                            .collect::<Vec<_>>()
+                    })
+                })
+                .collect();
+            let mut out = Vec::with_capacity(nodes.len());
+            for h in handles {
+                match h.join() {
+                    Ok(v) => out.extend(v),
+                    Err(e) => std::panic::resume_unwind(e),
+                }
+            }
+            out
+        })
+    }
+}
+
+/// Totals of a correction.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Totals {
+    /// Nodes looked at.
+    pub nodes: usize,
+    /// Nodes moved (inside or extrapolated, with a non-zero displacement).
+    pub corrected: usize,
+    /// Nodes corrected by extrapolation.
+    pub extrapolated: usize,
+    /// Nodes beyond the margin, left unchanged.
+    pub outside: usize,
+    /// Nodes with an unknown coordinate, left unchanged.
+    pub unknown: usize,
+    /// The largest displacement, mm.
+    pub max_displacement_mm: f64,
+    /// The root mean square displacement over the corrected nodes, mm.
+    pub rms_displacement_mm: f64,
+}
+
+impl Totals {
+    /// Totals of `corrections`.
+    pub fn of(corrections: &[NodeCorrection]) -> Self {
+        let mut t = Self {
+            nodes: corrections.len(),
+            ..Self::default()
+        };
+        let mut sum = 0.0;
+        for c in corrections {
+            match c.placement {
+                Placement::Outside => t.outside += 1,
+                Placement::Unknown => t.unknown += 1,
+                Placement::Extrapolated => t.extrapolated += 1,
+                Placement::Inside => {}
+            }
+            let d = norm(c.displacement);
+            if d > 0.0 {
+                t.corrected += 1;
+                sum += d * d;
+                t.max_displacement_mm = t.max_displacement_mm.max(d);
+            }
+        }
+        if t.corrected > 0 {
+            t.rms_displacement_mm = (sum / t.corrected as f64).sqrt();
+        }
+        t
+    }
+}

@@ -1,0 +1,228 @@
+//! Measured sections harmonised into a grid of quadrilateral facets.
+
+use crate::vec3::{V3, add, dot, norm, scale, sub, unit};
+use crate::{CorrectError, Measurements};
+
+/// The measured points as a regular grid: `sections` rows of
+/// `points_per_section` corresponding points. Facet `(i, j)` is spanned by
+/// points `i, i+1` of sections `j, j+1`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Grid {
+    /// Points per section (`s` runs along them).
+    pub nu: usize,
+    /// Sections (`t` runs across them).
+    pub nv: usize,
+    /// Nominal points, section by section (`j * nu + i`).
+    pub nominal: Vec<V3>,
+    /// Deviations (actual − nominal, or its normal component), same order.
+    pub deviation: Vec<V3>,
+    /// Nominal normals where the report gives them.
+    pub normal: Option<Vec<V3>>,
+    /// Whether the sections were resampled to corresponding points.
+    pub resampled: bool,
+}
+
+impl Grid {
+    /// Harmonises the sections: each one resampled by arc length to
+    /// `points_per_section` points (`None`: as measured when every section
+    /// has the same count, else to the largest count), nominal points,
+    /// deviations and normals interpolated linearly along the section.
+    ///
+    /// Errors: fewer than two sections, a section with fewer than two
+    /// points, two consecutive points at the same place, a section running
+    /// the other way than its neighbour, normals on some points only.
+    pub fn from_measurements(
+        m: &Measurements,
+        points_per_section: Option<usize>,
+    ) -> Result<Self, CorrectError> {
+        let err = |s: String| Err(CorrectError::Sections(s));
+        if m.sections.len() < 2 {
+            return err(format!(
+                "{} section(s) measured: the correction needs at least 2 sections",
+                m.sections.len()
+            ));
+        }
+        if let Some(n) = points_per_section
+            && n < 2
+        {
+            return err(format!("points per section = {n}: must be at least 2"));
+        }
+        let with_normals = m.points().filter(|p| p.normal.is_some()).count();
+        if with_normals != 0 && with_normals != m.len() {
+            return err(format!(
+                "{with_normals} of {} points have a normal: give normals for all or none",
+                m.len()
+            ));
+        }
+        let mut prev_dir: Option<V3> = None;
+        for (j, s) in m.sections.iter().enumerate() {
+            if s.points.len() < 2 {
+                return err(format!(
+                    "section `{}` has {} point(s): a section needs at least 2",
+                    s.name,
+                    s.points.len()
+                ));
+            }
+            let len: f64 = s
+                .points
+                .windows(2)
+                .map(|w| norm(sub(w[1].nominal, w[0].nominal)))
+                .sum();
+            for w in s.points.windows(2) {
+                if norm(sub(w[1].nominal, w[0].nominal)) <= 1e-9 * (1.0 + len) {
+                    return err(format!(
+                        "section `{}`: points `{}` and `{}` are at the same place (duplicate point)",
+                        s.name, w[0].point, w[1].point
+                    ));
+                }
+            }
+            let dir = sub(s.points[s.points.len() - 1].nominal, s.points[0].nominal);
+            if let Some(p) = prev_dir
+                && dot(p, dir) < 0.0
+            {
+                return err(format!(
+                    "section `{}` runs the other way than section `{}`: list the points of every \
+                     section in the same direction",
+                    s.name,
+                    m.sections[j - 1].name
+                ));
+            }
+            prev_dir = Some(dir);
+        }
+        let counts: Vec<usize> = m.sections.iter().map(|s| s.points.len()).collect();
+        let same = counts.iter().all(|&c| c == counts[0]);
+        let nu = points_per_section.unwrap_or_else(|| counts.iter().copied().max().unwrap_or(2));
+        let resample = !(same && nu == counts[0]);
+        let nv = m.sections.len();
+        let mut nominal = Vec::with_capacity(nu * nv);
+        let mut deviation = Vec::with_capacity(nu * nv);
+        let mut normal = (with_normals > 0).then(|| Vec::with_capacity(nu * nv));
+        for s in &m.sections {
+            if !resample {
+                for p in &s.points {
+                    nominal.push(p.nominal);
+                    deviation.push(p.deviation());
+                    if let (Some(v), Some(n)) = (&mut normal, p.normal) {
+                        v.push(n);
+                    }
+                }
+                continue;
+            }
+            // Cumulative arc length of the nominal polyline.
+            let mut acc = vec![0.0];
+            for w in s.points.windows(2) {
+                let l = acc[acc.len() - 1] + norm(sub(w[1].nominal, w[0].nominal));
+                acc.push(l);
+            }
+            let total = acc[acc.len() - 1];
+            let mut seg = 0;
+            for k in 0..nu {
+                let at = total * k as f64 / (nu - 1) as f64;
+                while seg + 2 < acc.len() && acc[seg + 1] < at {
+                    seg += 1;
+                }
+                let f = ((at - acc[seg]) / (acc[seg + 1] - acc[seg])).clamp(0.0, 1.0);
+                let (a, b) = (&s.points[seg], &s.points[seg + 1]);
+                let lerp = |x: V3, y: V3| add(scale(x, 1.0 - f), scale(y, f));
+                nominal.push(lerp(a.nominal, b.nominal));
+                deviation.push(lerp(a.deviation(), b.deviation()));
+                if let (Some(v), Some(na), Some(nb)) = (&mut normal, a.normal, b.normal) {
+                    v.push(unit(lerp(na, nb)));
+                }
+            }
+        }
+        Ok(Self {
+            nu,
+            nv,
+            nominal,
+            deviation,
+            normal,
+            resampled: resample,
+        })
+    }
+
+    /// Nominal point `i` of section `j`.
+    #[inline]
+    pub fn at(&self, i: usize, j: usize) -> V3 {
+        self.nominal[j * self.nu + i]
+    }
+
+    /// The deviation at point `i` of section `j`.
+    #[inline]
+    pub fn deviation_at(&self, i: usize, j: usize) -> V3 {
+        self.deviation[j * self.nu + i]
+    }
+
+    /// The number of facets.
+    pub fn facets(&self) -> usize {
+        (self.nu - 1) * (self.nv - 1)
+    }
+
+    /// The largest deviation on the grid, mm.
+    pub fn max_deviation(&self) -> f64 {
+        self.deviation.iter().map(|d| norm(*d)).fold(0.0, f64::max)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::measure::{MeasuredPoint, Section};
+
+    fn section(name: &str, y: f64, xs: &[f64]) -> Section {
+        Section {
+            name: name.into(),
+            points: xs
+                .iter()
+                .enumerate()
+                .map(|(k, &x)| MeasuredPoint {
+                    point: k.to_string(),
+                    nominal: [x, y, 0.0],
+                    actual: [x, y, 0.1 * x],
+                    normal: None,
+                })
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn sections_of_different_counts_are_resampled_by_arc_length() {
+        let m = Measurements {
+            sections: vec![
+                section("a", 0.0, &[0.0, 10.0]),
+                section("b", 5.0, &[0.0, 2.0, 10.0]),
+            ],
+        };
+        let g = Grid::from_measurements(&m, None).unwrap();
+        assert!(g.resampled);
+        assert_eq!((g.nu, g.nv), (3, 2));
+        assert_eq!(g.at(1, 0), [5.0, 0.0, 0.0]);
+        assert!((g.deviation_at(1, 0)[2] - 0.5).abs() < 1e-15);
+        assert_eq!(g.at(1, 1), [5.0, 5.0, 0.0]);
+    }
+
+    #[test]
+    fn bad_sections_are_named() {
+        let one = Measurements {
+            sections: vec![section("a", 0.0, &[0.0, 1.0]), section("b", 1.0, &[0.0])],
+        };
+        let e = Grid::from_measurements(&one, None).unwrap_err().to_string();
+        assert!(e.contains("section `b` has 1 point"), "{e}");
+        let rev = Measurements {
+            sections: vec![
+                section("a", 0.0, &[0.0, 1.0]),
+                section("b", 1.0, &[1.0, 0.0]),
+            ],
+        };
+        let e = Grid::from_measurements(&rev, None).unwrap_err().to_string();
+        assert!(e.contains("runs the other way"), "{e}");
+        let dup = Measurements {
+            sections: vec![
+                section("a", 0.0, &[0.0, 1.0, 1.0]),
+                section("b", 1.0, &[0.0, 1.0, 2.0]),
+            ],
+        };
+        let e = Grid::from_measurements(&dup, None).unwrap_err().to_string();
+        assert!(e.contains("duplicate"), "{e}");
+    }
+}

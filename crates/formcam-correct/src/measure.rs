@@ -1,0 +1,425 @@
+//! The CMM's measurements: nominal and actual points per control section.
+
+use crate::CorrectError;
+use crate::vec3::{V3, dot, norm, scale, sub, unit};
+
+/// One measured point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeasuredPoint {
+    /// The point's name in its section.
+    pub point: String,
+    /// The nominal (model) point, mm.
+    pub nominal: V3,
+    /// The measured point, mm.
+    pub actual: V3,
+    /// The nominal surface normal (unit), if the report gives it.
+    pub normal: Option<V3>,
+}
+
+impl MeasuredPoint {
+    /// Actual − nominal; its normal component (a vector along the normal)
+    /// where the normal is given.
+    pub fn deviation(&self) -> V3 {
+        let d = sub(self.actual, self.nominal);
+        match self.normal {
+            Some(n) => scale(n, dot(d, n)),
+            None => d,
+        }
+    }
+}
+
+/// The points of one control section, in measuring order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Section {
+    /// The section's name.
+    pub name: String,
+    /// Its points.
+    pub points: Vec<MeasuredPoint>,
+}
+
+/// A CMM report: sections in order.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Measurements {
+    /// The sections in the order they first appear.
+    pub sections: Vec<Section>,
+}
+
+fn bad(line: usize, msg: impl std::fmt::Display) -> CorrectError {
+    CorrectError::Measurements(format!("line {line}: {msg}"))
+}
+
+impl Measurements {
+    /// Every point.
+    pub fn points(&self) -> impl Iterator<Item = &MeasuredPoint> {
+        self.sections.iter().flat_map(|s| s.points.iter())
+    }
+
+    /// The number of points.
+    pub fn len(&self) -> usize {
+        self.sections.iter().map(|s| s.points.len()).sum()
+    }
+
+    /// No points.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The largest deviation (length of the deviation vector), mm.
+    pub fn max_deviation(&self) -> f64 {
+        self.points()
+            .map(|p| norm(p.deviation()))
+            .fold(0.0, f64::max)
+    }
+
+    /// The root mean square deviation, mm.
+    pub fn rms_deviation(&self) -> f64 {
+        let n = self.len();
+        if n == 0 {
+            return 0.0;
+        }
+        let s: f64 = self
+            .points()
+            .map(|p| dot(p.deviation(), p.deviation()))
+            .sum();
+        (s / n as f64).sqrt()
+    }
+
+    /// Reads the CSV report: a header with the columns `section, point,
+    /// x_nom, y_nom, z_nom, x_act, y_act, z_act` (any order), optionally
+    /// `nx, ny, nz` (the nominal normal); instead of the actual point, a
+    /// `dev` column (the normal deviation, mm) with the normal. Points of a
+    /// section are ordered by `point` (numerically when every name is a
+    /// number, else as listed); sections by their first row.
+    pub fn from_csv(text: &str) -> Result<Self, CorrectError> {
+        let mut rows = text
+            .lines()
+            .enumerate()
+            .map(|(i, l)| (i + 1, l.trim()))
+            .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+        let Some((_, header)) = rows.next() else {
+            return Err(CorrectError::Measurements("the file is empty".into()));
+        };
+        let names: Vec<String> = header
+            .split([',', ';'])
+            .map(|s| s.trim().to_ascii_lowercase())
+            .collect();
+        let col = |n: &str| names.iter().position(|c| c == n);
+        let need = |n: &str| {
+            col(n).ok_or_else(|| {
+                CorrectError::Measurements(format!(
+                    "line 1: no column `{n}` (the header needs section, point, x_nom, y_nom, z_nom, \
+                     and x_act, y_act, z_act or dev with nx, ny, nz)"
+                ))
+            })
+        };
+        let sec = need("section")?;
+        let pt = need("point")?;
+        let nom = [need("x_nom")?, need("y_nom")?, need("z_nom")?];
+        let normal_cols = match (col("nx"), col("ny"), col("nz")) {
+            (Some(a), Some(b), Some(c)) => Some([a, b, c]),
+            (None, None, None) => None,
+            _ => {
+                return Err(CorrectError::Measurements(
+                    "line 1: give all of nx, ny, nz or none".into(),
+                ));
+            }
+        };
+        let act_cols = match (col("x_act"), col("y_act"), col("z_act")) {
+            (Some(a), Some(b), Some(c)) => Some([a, b, c]),
+            _ => None,
+        };
+        let dev_col = col("dev");
+        if act_cols.is_none() && (dev_col.is_none() || normal_cols.is_none()) {
+            return Err(CorrectError::Measurements(
+                "line 1: give x_act, y_act, z_act, or dev with nx, ny, nz".into(),
+            ));
+        }
+        let mut m = Measurements::default();
+        for (line, row) in rows {
+            let f: Vec<&str> = row.split([',', ';']).map(str::trim).collect();
+            let field = |c: usize| -> Result<f64, CorrectError> {
+                let s = f
+                    .get(c)
+                    .ok_or_else(|| bad(line, format!("no value for `{}`", names[c])))?;
+                let v: f64 = s
+                    .parse()
+                    .map_err(|_| bad(line, format!("`{}` = `{s}` is not a number", names[c])))?;
+                if !v.is_finite() {
+                    return Err(bad(line, format!("`{}` = `{s}` is not finite", names[c])));
+                }
+                Ok(v)
+            };
+            let section = f.get(sec).copied().unwrap_or_default().to_string();
+            let point = f.get(pt).copied().unwrap_or_default().to_string();
+            if section.is_empty() || point.is_empty() {
+                return Err(bad(line, "a row needs `section` and `point`"));
+            }
+            let nominal = [field(nom[0])?, field(nom[1])?, field(nom[2])?];
+            let normal = match normal_cols {
+                Some(c) => {
+                    let n = [field(c[0])?, field(c[1])?, field(c[2])?];
+                    if norm(n) < 1e-9 {
+                        return Err(bad(line, "the normal nx, ny, nz is zero"));
+                    }
+                    Some(unit(n))
+                }
+                None => None,
+            };
+            let actual = match (act_cols, dev_col, normal) {
+                (Some(c), _, _) => [field(c[0])?, field(c[1])?, field(c[2])?],
+                (None, Some(d), Some(n)) => {
+                    let d = field(d)?;
+                    [
+                        nominal[0] + d * n[0],
+                        nominal[1] + d * n[1],
+                        nominal[2] + d * n[2],
+                    ]
+                }
+                _ => return Err(bad(line, "no actual point")),
+            };
+            m.push(
+                section,
+                MeasuredPoint {
+                    point,
+                    nominal,
+                    actual,
+                    normal,
+                },
+                line,
+            )?;
+        }
+        m.finish()
+    }
+
+    /// Reads the point features of a DMIS output file: nominals
+    /// `F(label)=FEAT/POINT,CART,x,y,z[,i,j,k]` and actuals
+    /// `FA(label)=FEAT/POINT,CART,x,y,z[,i,j,k]`. A label names its section
+    /// and point as `<section>_<point>` (also `.` or `-`), e.g. `S1_P3`.
+    /// `UNITS/INCH` scales to mm; `$$` comments and `$` continuations are
+    /// understood; other statements are passed over.
+    pub fn from_dmis(text: &str) -> Result<Self, CorrectError> {
+        let mut nominal: Vec<(String, usize, V3, Option<V3>)> = Vec::new();
+        let mut actual: std::collections::HashMap<String, (usize, V3)> =
+            std::collections::HashMap::new();
+        let mut unit_scale = 1.0;
+        let mut stmt = String::new();
+        let mut stmt_line = 0;
+        for (i, raw) in text.lines().enumerate() {
+            let line = i + 1;
+            let l = match raw.find("$$") {
+                Some(k) => &raw[..k],
+                None => raw,
+            }
+            .trim();
+            if stmt.is_empty() {
+                stmt_line = line;
+            }
+            if let Some(c) = l.strip_suffix('$') {
+                stmt.push_str(c);
+                continue;
+            }
+            stmt.push_str(l);
+            let s = std::mem::take(&mut stmt);
+            let u = s.to_ascii_uppercase();
+            if u.starts_with("UNITS/") {
+                let unit = u[6..].split(',').next().unwrap_or("").trim();
+                unit_scale = match unit {
+                    "MM" => 1.0,
+                    "INCH" => 25.4,
+                    "CM" => 10.0,
+                    "METER" => 1000.0,
+                    other => return Err(bad(stmt_line, format!("unknown length unit `{other}`"))),
+                };
+                continue;
+            }
+            let (is_actual, rest) = if let Some(r) = u.strip_prefix("FA(") {
+                (true, r)
+            } else if let Some(r) = u.strip_prefix("F(") {
+                (false, r)
+            } else {
+                continue;
+            };
+            let Some(close) = rest.find(')') else {
+                return Err(bad(stmt_line, "a feature label without `)`"));
+            };
+            let label = s[s.find('(').map_or(0, |k| k + 1)..][..close]
+                .trim()
+                .to_string();
+            let def = rest[close + 1..].trim_start();
+            let Some(def) = def.strip_prefix('=') else {
+                continue;
+            };
+            let def = def.trim();
+            if !def.starts_with("FEAT/POINT") {
+                continue;
+            }
+            let parts: Vec<&str> = def.split(',').map(str::trim).collect();
+            if parts.get(1) != Some(&"CART") {
+                return Err(bad(
+                    stmt_line,
+                    format!("feature {label}: only CART points are read"),
+                ));
+            }
+            let num = |k: usize| -> Result<f64, CorrectError> {
+                let s = parts.get(k).ok_or_else(|| {
+                    bad(stmt_line, format!("feature {label}: too few coordinates"))
+                })?;
+                let v: f64 = s.parse().map_err(|_| {
+                    bad(stmt_line, format!("feature {label}: `{s}` is not a number"))
+                })?;
+                if !v.is_finite() {
+                    return Err(bad(
+                        stmt_line,
+                        format!("feature {label}: `{s}` is not finite"),
+                    ));
+                }
+                Ok(v)
+            };
+            let p = scale([num(2)?, num(3)?, num(4)?], unit_scale);
+            let n = if parts.len() >= 8 {
+                let n = [num(5)?, num(6)?, num(7)?];
+                (norm(n) > 1e-9).then(|| unit(n))
+            } else {
+                None
+            };
+            if is_actual {
+                if actual.insert(label.clone(), (stmt_line, p)).is_some() {
+                    return Err(bad(stmt_line, format!("FA({label}) is given twice")));
+                }
+            } else {
+                nominal.push((label, stmt_line, p, n));
+            }
+        }
+        let mut m = Measurements::default();
+        for (label, line, p, n) in nominal {
+            let Some(&(_, a)) = actual.get(&label) else {
+                return Err(bad(line, format!("F({label}) has no measured FA({label})")));
+            };
+            let Some(k) = label.rfind(['_', '.', '-']) else {
+                return Err(bad(
+                    line,
+                    format!("DMIS label `{label}`: name points `<section>_<point>` (e.g. `S1_P3`)"),
+                ));
+            };
+            m.push(
+                label[..k].to_string(),
+                MeasuredPoint {
+                    point: label[k + 1..].to_string(),
+                    nominal: p,
+                    actual: a,
+                    normal: n,
+                },
+                line,
+            )?;
+        }
+        if m.is_empty() {
+            return Err(CorrectError::Measurements(
+                "no F(..)=FEAT/POINT,CART features found".into(),
+            ));
+        }
+        m.finish()
+    }
+
+    fn push(&mut self, section: String, p: MeasuredPoint, line: usize) -> Result<(), CorrectError> {
+        let s = match self.sections.iter().position(|s| s.name == section) {
+            Some(k) => &mut self.sections[k],
+            None => {
+                self.sections.push(Section {
+                    name: section,
+                    points: Vec::new(),
+                });
+                let last = self.sections.len() - 1;
+                &mut self.sections[last]
+            }
+        };
+        if s.points.iter().any(|q| q.point == p.point) {
+            return Err(bad(
+                line,
+                format!("point `{}` of section `{}` is given twice", p.point, s.name),
+            ));
+        }
+        s.points.push(p);
+        Ok(())
+    }
+
+    /// Orders the points of every section by name (numerically where all are numbers).
+    fn finish(mut self) -> Result<Self, CorrectError> {
+        if self.is_empty() {
+            return Err(CorrectError::Measurements("no measured points".into()));
+        }
+        for s in &mut self.sections {
+            if s.points.iter().all(|p| p.point.parse::<f64>().is_ok()) {
+                s.points.sort_by(|a, b| {
+                    let (x, y) = (
+                        a.point.parse::<f64>().unwrap_or(0.0),
+                        b.point.parse::<f64>().unwrap_or(0.0),
+                    );
+                    x.total_cmp(&y)
+                });
+            }
+        }
+        Ok(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn csv_with_normals_takes_the_normal_component() {
+        let text = "section,point,x_nom,y_nom,z_nom,x_act,y_act,z_act,nx,ny,nz\n\
+                    A,2,0,1,0,0.3,1,0.2,0,0,2\nA,1,0,0,0,0,0,0.1,0,0,1\nB,1,1,0,0,1,0,0,0,0,1\n";
+        let m = Measurements::from_csv(text).unwrap();
+        assert_eq!(m.sections.len(), 2);
+        assert_eq!(m.sections[0].points[0].point, "1");
+        assert_eq!(m.sections[0].points[1].deviation(), [0.0, 0.0, 0.2]);
+        assert!((m.max_deviation() - 0.2).abs() < 1e-15);
+    }
+
+    #[test]
+    fn dmis_points_pair_nominal_and_actual() {
+        let text = "DMISMN/'mould',05.0\nUNITS/MM,ANGDEG\n\
+                    F(S1_P1)=FEAT/POINT,CART,0,0,0,0,0,1\n\
+                    F(S1_P2)=FEAT/POINT,CART,$\n 10,0,0,0,0,1\n\
+                    $$ measured\nFA(S1_P2)=FEAT/POINT,CART,10,0,0.05,0,0,1\n\
+                    FA(S1_P1)=FEAT/POINT,CART,0,0,-0.02,0,0,1\nENDFIL\n";
+        let m = Measurements::from_dmis(text).unwrap();
+        assert_eq!(m.sections.len(), 1);
+        let s = &m.sections[0];
+        assert_eq!(s.name, "S1");
+        assert_eq!(s.points[1].point, "P2");
+        assert!((s.points[1].deviation()[2] - 0.05).abs() < 1e-15);
+        assert!((s.points[0].deviation()[2] + 0.02).abs() < 1e-15);
+    }
+
+    #[test]
+    fn bad_reports_name_the_line_and_field() {
+        let head = "section,point,x_nom,y_nom,z_nom,x_act,y_act,z_act\n";
+        let cases = [
+            (
+                format!("{head}A,1,0,0,NaN,0,0,0\n"),
+                "line 2: `z_nom` = `NaN` is not finite",
+            ),
+            (
+                format!("{head}A,1,0,0,0,0,0,0\nA,1,1,0,0,1,0,0\n"),
+                "line 3: point `1` of section `A` is given twice",
+            ),
+            (
+                format!("{head}A,1,0,0,x,0,0,0\n"),
+                "`z_nom` = `x` is not a number",
+            ),
+            ("section,point,x_nom\n".to_string(), "no column `y_nom`"),
+            (String::new(), "empty"),
+        ];
+        for (text, want) in cases {
+            let e = Measurements::from_csv(&text).unwrap_err().to_string();
+            assert!(e.contains(want), "{e}");
+        }
+        let e =
+            Measurements::from_dmis("F(P1)=FEAT/POINT,CART,0,0,0\nFA(P1)=FEAT/POINT,CART,0,0,0\n")
+                .unwrap_err()
+                .to_string();
+        assert!(e.contains("<section>_<point>"), "{e}");
+    }
+}

@@ -1,0 +1,456 @@
+//! Coons patches over the grid's facets: the nominal surface and the
+//! deviation field, bilinear (eq. 1 of the seed) or bicubic Hermite (C1,
+//! slopes by finite differences), and the foot of the normal from a point.
+
+use crate::Grid;
+use crate::vec3::{V3, axpy, cross, dot, sub, unit};
+
+/// How the surface and the deviations are interpolated between measured points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Interpolation {
+    /// The seed's bilinear Coons patch per facet (eq. 1).
+    Bilinear,
+    /// Bicubic Hermite (Ferguson) patches with slopes and twists from finite
+    /// differences over the grid: C1 across facets.
+    Bicubic,
+}
+
+impl Interpolation {
+    /// `bilinear` or `bicubic`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name {
+            "bilinear" => Some(Self::Bilinear),
+            "bicubic" => Some(Self::Bicubic),
+            _ => None,
+        }
+    }
+
+    /// The name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Bilinear => "bilinear",
+            Self::Bicubic => "bicubic",
+        }
+    }
+}
+
+/// Value and derivatives of a patch at `(s, t)`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Jet {
+    pub f: V3,
+    pub fs: V3,
+    pub ft: V3,
+    pub fss: V3,
+    pub fst: V3,
+    pub ftt: V3,
+}
+
+/// The foot of the normal on one facet.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Foot {
+    pub s: f64,
+    pub t: f64,
+    /// Squared distance from the point.
+    pub d2: f64,
+}
+
+/// Slopes of a grid field along `i` (within sections) and `j` (across).
+fn slopes(v: &[V3], nu: usize, nv: usize, along_u: bool) -> Vec<V3> {
+    let (n, stride, count) = if along_u { (nu, 1, nv) } else { (nv, nu, nu) };
+    let mut out = vec![[0.0; 3]; v.len()];
+    for line in 0..count {
+        let base = if along_u { line * nu } else { line };
+        let at = |k: usize| v[base + k * stride];
+        for k in 0..n {
+            let d = if n == 2 {
+                sub(at(1), at(0))
+            } else if k == 0 {
+                // Second order, one-sided.
+                let (a, b, c) = (at(0), at(1), at(2));
+                [0, 1, 2].map(|x| (-3.0 * a[x] + 4.0 * b[x] - c[x]) / 2.0)
+            } else if k == n - 1 {
+                let (a, b, c) = (at(n - 1), at(n - 2), at(n - 3));
+                [0, 1, 2].map(|x| (3.0 * a[x] - 4.0 * b[x] + c[x]) / 2.0)
+            } else {
+                let (a, c) = (at(k - 1), at(k + 1));
+                [0, 1, 2].map(|x| (c[x] - a[x]) / 2.0)
+            };
+            out[base + k * stride] = d;
+        }
+    }
+    out
+}
+
+/// Hermite basis `[h0, h1, g0, g1]` and its first and second derivatives.
+#[inline(always)]
+fn hermite(s: f64) -> [[f64; 4]; 3] {
+    let s2 = s * s;
+    let s3 = s2 * s;
+    [
+        [
+            2.0 * s3 - 3.0 * s2 + 1.0,
+            -2.0 * s3 + 3.0 * s2,
+            s3 - 2.0 * s2 + s,
+            s3 - s2,
+        ],
+        [
+            6.0 * s2 - 6.0 * s,
+            -6.0 * s2 + 6.0 * s,
+            3.0 * s2 - 4.0 * s + 1.0,
+            3.0 * s2 - 2.0 * s,
+        ],
+        [
+            12.0 * s - 6.0,
+            -12.0 * s + 6.0,
+            6.0 * s - 4.0,
+            6.0 * s - 2.0,
+        ],
+    ]
+}
+
+/// A grid field with its slopes (for bicubic patches).
+#[derive(Debug, Clone)]
+struct Field {
+    v: Vec<V3>,
+    u: Vec<V3>,
+    w: Vec<V3>,
+    uw: Vec<V3>,
+}
+
+impl Field {
+    fn new(v: &[V3], nu: usize, nv: usize) -> Self {
+        let u = slopes(v, nu, nv, true);
+        let w = slopes(v, nu, nv, false);
+        let uw = slopes(&u, nu, nv, false);
+        Self {
+            v: v.to_vec(),
+            u,
+            w,
+            uw,
+        }
+    }
+
+    /// The 16 Hermite coefficients of facet `(i, j)`: `c[a][b]`, `a, b` in
+    /// `[corner 0, corner 1, slope 0, slope 1]`.
+    #[inline(always)]
+    fn coefficients(&self, nu: usize, i: usize, j: usize) -> [[V3; 4]; 4] {
+        let k = |a: usize, b: usize| (j + b) * nu + i + a;
+        let mut c = [[[0.0; 3]; 4]; 4];
+        for a in 0..2 {
+            for b in 0..2 {
+                c[a][b] = self.v[k(a, b)];
+                c[a + 2][b] = self.u[k(a, b)];
+                c[a][b + 2] = self.w[k(a, b)];
+                c[a + 2][b + 2] = self.uw[k(a, b)];
+            }
+        }
+        c
+    }
+}
+
+/// `sum_a sum_b bs[a] bt[b] c[a][b]`.
+#[inline(always)]
+fn contract(c: &[[V3; 4]; 4], bs: &[f64; 4], bt: &[f64; 4]) -> V3 {
+    let mut out = [0.0; 3];
+    for a in 0..4 {
+        let mut row = [0.0; 3];
+        for b in 0..4 {
+            row = axpy(row, bt[b], c[a][b]);
+        }
+        out = axpy(out, bs[a], row);
+    }
+    out
+}
+
+/// The interpolated surface and deviation field over a grid.
+#[derive(Debug, Clone)]
+pub struct Surface<'g> {
+    grid: &'g Grid,
+    kind: Interpolation,
+    nominal: Option<Field>,
+    deviation: Option<Field>,
+}
+
+impl<'g> Surface<'g> {
+    /// Patches of `kind` over `grid`.
+    pub fn new(grid: &'g Grid, kind: Interpolation) -> Self {
+        let (nominal, deviation) = match kind {
+            Interpolation::Bilinear => (None, None),
+            Interpolation::Bicubic => (
+                Some(Field::new(&grid.nominal, grid.nu, grid.nv)),
+                Some(Field::new(&grid.deviation, grid.nu, grid.nv)),
+            ),
+        };
+        Self {
+            grid,
+            kind,
+            nominal,
+            deviation,
+        }
+    }
+
+    /// The grid.
+    pub fn grid(&self) -> &'g Grid {
+        self.grid
+    }
+
+    /// The interpolation.
+    pub fn kind(&self) -> Interpolation {
+        self.kind
+    }
+
+    /// The bilinear patch of facet `(i, j)` (used for extrapolation too).
+    #[inline(always)]
+    pub(crate) fn bilinear(&self, i: usize, j: usize, s: f64, t: f64) -> Jet {
+        let g = self.grid;
+        let (p00, p10, p01, p11) = (
+            g.at(i, j),
+            g.at(i + 1, j),
+            g.at(i, j + 1),
+            g.at(i + 1, j + 1),
+        );
+        let e0 = sub(p10, p00);
+        let e1 = sub(p11, p01);
+        let f0 = axpy(p00, s, e0);
+        let f1 = axpy(p01, s, e1);
+        let ft = sub(f1, f0);
+        Jet {
+            f: axpy(f0, t, ft),
+            fs: axpy(e0, t, sub(e1, e0)),
+            ft,
+            fss: [0.0; 3],
+            fst: sub(e1, e0),
+            ftt: [0.0; 3],
+        }
+    }
+
+    /// The nominal surface of facet `(i, j)` at `(s, t)`, with derivatives.
+    #[inline(always)]
+    pub(crate) fn jet(&self, i: usize, j: usize, s: f64, t: f64) -> Jet {
+        match &self.nominal {
+            None => self.bilinear(i, j, s, t),
+            Some(field) => {
+                let c = field.coefficients(self.grid.nu, i, j);
+                let hs = hermite(s);
+                let ht = hermite(t);
+                Jet {
+                    f: contract(&c, &hs[0], &ht[0]),
+                    fs: contract(&c, &hs[1], &ht[0]),
+                    ft: contract(&c, &hs[0], &ht[1]),
+                    fss: contract(&c, &hs[2], &ht[0]),
+                    fst: contract(&c, &hs[1], &ht[1]),
+                    ftt: contract(&c, &hs[0], &ht[2]),
+                }
+            }
+        }
+    }
+
+    /// The deviation interpolated on facet `(i, j)` at `(s, t)` and its
+    /// slopes along `s` and `t`.
+    pub(crate) fn deviation(&self, i: usize, j: usize, s: f64, t: f64) -> (V3, V3, V3) {
+        let g = self.grid;
+        match &self.deviation {
+            None => {
+                let (d00, d10, d01, d11) = (
+                    g.deviation_at(i, j),
+                    g.deviation_at(i + 1, j),
+                    g.deviation_at(i, j + 1),
+                    g.deviation_at(i + 1, j + 1),
+                );
+                let e0 = sub(d10, d00);
+                let e1 = sub(d11, d01);
+                let f0 = axpy(d00, s, e0);
+                let f1 = axpy(d01, s, e1);
+                (
+                    axpy(f0, t, sub(f1, f0)),
+                    axpy(e0, t, sub(e1, e0)),
+                    sub(f1, f0),
+                )
+            }
+            Some(field) => {
+                let c = field.coefficients(g.nu, i, j);
+                let hs = hermite(s);
+                let ht = hermite(t);
+                (
+                    contract(&c, &hs[0], &ht[0]),
+                    contract(&c, &hs[1], &ht[0]),
+                    contract(&c, &hs[0], &ht[1]),
+                )
+            }
+        }
+    }
+
+    /// The unit normal of facet `(i, j)` at `(s, t)`, turned toward `p`.
+    pub(crate) fn normal_toward(&self, i: usize, j: usize, s: f64, t: f64, p: V3) -> V3 {
+        let jet = self.jet(i, j, s, t);
+        let n = unit(cross(jet.fs, jet.ft));
+        if dot(n, sub(p, jet.f)) < 0.0 {
+            [-n[0], -n[1], -n[2]]
+        } else {
+            n
+        }
+    }
+
+    /// The foot of the normal from `p` on facet `(i, j)`: the `(s, t)` that
+    /// minimises the distance, in `[0, 1]^2` when `clamp` (projected Newton;
+    /// Gauss–Newton where the Hessian is not positive definite; a halving
+    /// line search keeps every step a descent). Without `clamp`, the facet's
+    /// bilinear form is continued beyond its edges (for extrapolation).
+    pub(crate) fn foot(&self, i: usize, j: usize, p: V3, clamp: bool) -> Foot {
+        let eval = |s: f64, t: f64| {
+            if clamp {
+                self.jet(i, j, s, t)
+            } else {
+                self.bilinear(i, j, s, t)
+            }
+        };
+        let (lo, hi) = if clamp { (0.0, 1.0) } else { (-50.0, 51.0) };
+        let (mut s, mut t) = (0.5, 0.5);
+        let mut jet = eval(s, t);
+        let mut r = sub(jet.f, p);
+        let mut f = dot(r, r);
+        for _ in 0..40 {
+            let gs = dot(r, jet.fs);
+            let gt = dot(r, jet.ft);
+            let a = dot(jet.fs, jet.fs);
+            let b = dot(jet.fs, jet.ft);
+            let c = dot(jet.ft, jet.ft);
+            let (mut hss, mut hst, mut htt) = (
+                a + dot(r, jet.fss),
+                b + dot(r, jet.fst),
+                c + dot(r, jet.ftt),
+            );
+            if hss <= 0.0 || htt <= 0.0 || hss * htt - hst * hst <= 1e-14 * (a * c).max(1e-300) {
+                (hss, hst, htt) = (a, b, c);
+            }
+            // Active bounds: at a bound with the gradient pushing out.
+            let fix_s = (s <= lo && gs > 0.0) || (s >= hi && gs < 0.0);
+            let fix_t = (t <= lo && gt > 0.0) || (t >= hi && gt < 0.0);
+            let (ds, dt) = match (fix_s, fix_t) {
+                (true, true) => break,
+                (true, false) => (0.0, if htt > 0.0 { -gt / htt } else { 0.0 }),
+                (false, true) => (if hss > 0.0 { -gs / hss } else { 0.0 }, 0.0),
+                (false, false) => {
+                    let det = hss * htt - hst * hst;
+                    if det.abs() < 1e-300 {
+                        break;
+                    }
+                    ((-gs * htt + gt * hst) / det, (-gt * hss + gs * hst) / det)
+                }
+            };
+            let mut k = 1.0;
+            let mut moved = false;
+            for _ in 0..30 {
+                let ns = (s + k * ds).clamp(lo, hi);
+                let nt = (t + k * dt).clamp(lo, hi);
+                let nj = eval(ns, nt);
+                let nr = sub(nj.f, p);
+                let nf = dot(nr, nr);
+                if nf <= f {
+                    let step = (ns - s).abs() + (nt - t).abs();
+                    (s, t, jet, r, f) = (ns, nt, nj, nr, nf);
+                    moved = step > 1e-14;
+                    break;
+                }
+                k *= 0.5;
+            }
+            if !moved {
+                break;
+            }
+        }
+        Foot { s, t, d2: f }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grid(f: impl Fn(f64, f64) -> f64, nu: usize, nv: usize) -> Grid {
+        let mut nominal = Vec::new();
+        for j in 0..nv {
+            for i in 0..nu {
+                let (x, y) = (i as f64 * 10.0, j as f64 * 12.0);
+                nominal.push([x, y, f(x, y)]);
+            }
+        }
+        Grid {
+            nu,
+            nv,
+            deviation: vec![[0.0; 3]; nominal.len()],
+            nominal,
+            normal: None,
+            resampled: false,
+        }
+    }
+
+    #[test]
+    fn bicubic_reproduces_the_grid_and_is_c1() {
+        let g = grid(
+            |x, y| 0.01 * x * x - 0.02 * x * y + (y / 30.0).sin() * 5.0,
+            5,
+            4,
+        );
+        let s = Surface::new(&g, Interpolation::Bicubic);
+        for j in 0..3 {
+            for i in 0..4 {
+                let c = s.jet(i, j, 0.0, 0.0);
+                assert!(sub(c.f, g.at(i, j)).iter().all(|v| v.abs() < 1e-12));
+                let e = s.jet(i, j, 1.0, 1.0);
+                assert!(sub(e.f, g.at(i + 1, j + 1)).iter().all(|v| v.abs() < 1e-12));
+            }
+        }
+        // Slopes agree across the edge s = 1 | s = 0.
+        for t in [0.0, 0.3, 0.77, 1.0] {
+            let a = s.jet(1, 1, 1.0, t);
+            let b = s.jet(2, 1, 0.0, t);
+            assert!(sub(a.fs, b.fs).iter().all(|v| v.abs() < 1e-12));
+            assert!(sub(a.f, b.f).iter().all(|v| v.abs() < 1e-12));
+        }
+    }
+
+    #[test]
+    fn foot_matches_a_brute_force_search_on_curved_facets() {
+        // A strongly curved facet (a saddle): the foot by Newton against a
+        // dense search over (s, t).
+        let g = grid(|x, y| 0.08 * x * x - 0.05 * y * y + 0.03 * x * y, 3, 3);
+        for kind in [Interpolation::Bilinear, Interpolation::Bicubic] {
+            let surf = Surface::new(&g, kind);
+            for (k, p) in [
+                [3.0, 4.0, 5.0],
+                [7.0, 2.0, -3.0],
+                [12.0, 5.0, 1.0],
+                [5.0, 11.0, 8.0],
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                let foot = surf.foot(0, 0, p, true);
+                let n = 400;
+                let mut best = f64::INFINITY;
+                let mut arg = (0.0, 0.0);
+                for a in 0..=n {
+                    for b in 0..=n {
+                        let (s, t) = (a as f64 / n as f64, b as f64 / n as f64);
+                        let r = sub(surf.jet(0, 0, s, t).f, p);
+                        if dot(r, r) < best {
+                            best = dot(r, r);
+                            arg = (s, t);
+                        }
+                    }
+                }
+                assert!(
+                    foot.d2 <= best + 1e-12,
+                    "{kind:?} point {k}: {} > {best}",
+                    foot.d2
+                );
+                assert!(
+                    (foot.s - arg.0).abs() < 4e-3 && (foot.t - arg.1).abs() < 4e-3,
+                    "{kind:?} point {k}: ({}, {}) vs {arg:?}",
+                    foot.s,
+                    foot.t
+                );
+            }
+        }
+    }
+}

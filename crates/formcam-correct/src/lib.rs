@@ -22,6 +22,7 @@ mod error;
 mod grid;
 mod measure;
 mod patch;
+mod smooth;
 mod vec3;
 
 pub use correct::{Corrector, NodeCorrection, Options, Placement, Tool, Totals};
@@ -29,3 +30,4 @@ pub use error::CorrectError;
 pub use grid::Grid;
 pub use measure::{MeasuredPoint, Measurements, Section};
 pub use patch::{Interpolation, Surface};
+pub use smooth::{Smoothing, smooth};

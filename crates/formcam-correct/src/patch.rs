@@ -199,6 +199,11 @@ impl<'g> Surface<'g> {
         self.kind
     }
 
+    /// The nominal surface of facet `(i, j)` at `(s, t)`.
+    pub fn point(&self, i: usize, j: usize, s: f64, t: f64) -> [f64; 3] {
+        self.jet(i, j, s, t).f
+    }
+
     /// The bilinear patch of facet `(i, j)` (used for extrapolation too).
     #[inline(always)]
     pub(crate) fn bilinear(&self, i: usize, j: usize, s: f64, t: f64) -> Jet {

@@ -1,0 +1,261 @@
+#![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
+//! The correction against analytic cases.
+
+use formcam_correct::{Corrector, Grid, Interpolation, Options, Placement, Tool, Totals};
+
+const KINDS: [Interpolation; 2] = [Interpolation::Bilinear, Interpolation::Bicubic];
+
+/// A grid over `z = f(x, y)`: `nv` sections at `y = j * dy`, `nu` points at
+/// `x = i * dx`, with deviation `dev(x, y)`.
+fn grid(
+    nu: usize,
+    nv: usize,
+    (dx, dy): (f64, f64),
+    f: impl Fn(f64, f64) -> f64,
+    dev: impl Fn(f64, f64) -> [f64; 3],
+) -> Grid {
+    let mut nominal = Vec::new();
+    let mut deviation = Vec::new();
+    for j in 0..nv {
+        for i in 0..nu {
+            let (x, y) = (i as f64 * dx, j as f64 * dy);
+            nominal.push([x, y, f(x, y)]);
+            deviation.push(dev(x, y));
+        }
+    }
+    Grid {
+        nu,
+        nv,
+        nominal,
+        deviation,
+        normal: None,
+        resampled: false,
+    }
+}
+
+fn nodes(f: &dyn Fn(f64, f64) -> f64, x_max: f64, y_max: f64, n: usize) -> Vec<[f64; 3]> {
+    let mut out = Vec::new();
+    for a in 0..n {
+        for b in 0..n {
+            // Irrational-ish fractions so nodes fall inside facets and on edges.
+            let x = x_max * (a as f64 + 0.37) / n as f64;
+            let y = y_max * (b as f64 + 0.61) / n as f64;
+            out.push([x, y, f(x, y)]);
+        }
+    }
+    out
+}
+
+#[test]
+fn a_constant_offset_is_removed_exactly() {
+    let f = |x: f64, y: f64| 20.0 * (x / 80.0).sin() + 0.002 * y * y;
+    let c = [0.05, -0.1, 0.4];
+    let g = grid(9, 7, (10.0, 12.0), f, |_, _| c);
+    for kind in KINDS {
+        let corr = Corrector::new(
+            &g,
+            Options {
+                interpolation: kind,
+                ..Options::default()
+            },
+        )
+        .unwrap();
+        for p in nodes(&f, 80.0, 72.0, 23) {
+            let n = corr.correct_node(p);
+            assert_eq!(n.placement, Placement::Inside);
+            for k in 0..3 {
+                assert!(
+                    (n.displacement[k] + c[k]).abs() < 1e-12,
+                    "{kind:?} {p:?}: {n:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn a_bilinear_warp_is_removed_exactly() {
+    // A plane grid: (s, t) maps linearly to (x, y), so a warp bilinear in x
+    // and y is bilinear in (s, t) on every facet.
+    let f = |x: f64, y: f64| 0.3 * x - 0.2 * y + 5.0;
+    let warp = |x: f64, y: f64| {
+        [
+            0.01 + 0.001 * x,
+            -0.02 + 0.0005 * y,
+            0.4 - 0.003 * x + 0.002 * y + 0.00004 * x * y,
+        ]
+    };
+    let g = grid(6, 5, (16.0, 18.0), f, warp);
+    for kind in KINDS {
+        let corr = Corrector::new(
+            &g,
+            Options {
+                interpolation: kind,
+                gain: 1.0,
+                ..Options::default()
+            },
+        )
+        .unwrap();
+        for p in nodes(&f, 80.0, 72.0, 17) {
+            let n = corr.correct_node(p);
+            let w = warp(p[0], p[1]);
+            for k in 0..3 {
+                assert!(
+                    (n.displacement[k] + w[k]).abs() < 1e-12,
+                    "{kind:?} {p:?}: {:?} vs {w:?}",
+                    n.displacement
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_foot_is_the_nearest_point_of_the_whole_surface() {
+    // A doubly curved grid with nodes off the surface on both sides: the
+    // foot found by the k-d tree and the walk against a search over every
+    // facet.
+    let f = |x: f64, y: f64| 30.0 * (x / 50.0).sin() * (y / 70.0).cos();
+    let g = grid(12, 10, (8.0, 9.0), f, |_, _| [0.0; 3]);
+    for kind in KINDS {
+        let corr = Corrector::new(
+            &g,
+            Options {
+                interpolation: kind,
+                ..Options::default()
+            },
+        )
+        .unwrap();
+        let surf = corr.surface();
+        let mut k = 0;
+        for p in nodes(&f, 88.0, 81.0, 13) {
+            k += 1;
+            let lift = if k % 2 == 0 { 3.0 } else { -2.0 };
+            let q = [p[0] + 0.3, p[1] - 0.2, p[2] + lift];
+            let (_, _, _, _, d) = corr.locate(q);
+            let mut best = f64::INFINITY;
+            for j in 0..g.nv - 1 {
+                for i in 0..g.nu - 1 {
+                    best = best.min(surf_distance(surf, i, j, q));
+                }
+            }
+            assert!(
+                d <= best + 1e-9,
+                "{kind:?} {q:?}: walk {d} vs all facets {best}"
+            );
+        }
+    }
+}
+
+/// The least distance from `q` to facet `(i, j)` by a dense search.
+fn surf_distance(surf: &formcam_correct::Surface<'_>, i: usize, j: usize, q: [f64; 3]) -> f64 {
+    let n = 60;
+    let mut best = f64::INFINITY;
+    for a in 0..=n {
+        for b in 0..=n {
+            let p = surf.point(i, j, a as f64 / n as f64, b as f64 / n as f64);
+            let d = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt();
+            best = best.min(d);
+        }
+    }
+    best
+}
+
+#[test]
+fn a_ball_centre_moves_along_the_normal_by_the_normal_deviation() {
+    // A tilted plane; the part is 0.3 mm proud along the normal; ball centres
+    // 6 mm above the surface move back by 0.3 mm along the normal, and a
+    // tangential part of the deviation does not move them.
+    let (a, b) = (0.3, 0.1);
+    let f = move |x: f64, y: f64| a * x + b * y;
+    let len = (1.0f64 + a * a + b * b).sqrt();
+    let n = [-a / len, -b / len, 1.0 / len];
+    let tangent = [1.0 / (1.0 + a * a).sqrt(), 0.0, a / (1.0 + a * a).sqrt()];
+    let dev = [
+        0.3 * n[0] + 0.2 * tangent[0],
+        0.3 * n[1],
+        0.3 * n[2] + 0.2 * tangent[2],
+    ];
+    let g = grid(5, 5, (20.0, 20.0), f, |_, _| dev);
+    let corr = Corrector::new(
+        &g,
+        Options {
+            tool: Tool::Ball { radius: 6.0 },
+            ..Options::default()
+        },
+    )
+    .unwrap();
+    for p in nodes(&f, 80.0, 80.0, 7) {
+        let centre = [p[0] + 6.0 * n[0], p[1] + 6.0 * n[1], p[2] + 6.0 * n[2]];
+        let c = corr.correct_node(centre);
+        assert!((c.distance_mm - 6.0).abs() < 1e-9);
+        for k in 0..3 {
+            assert!((c.displacement[k] + 0.3 * n[k]).abs() < 1e-12, "{c:?}");
+        }
+    }
+}
+
+#[test]
+fn nodes_outside_are_left_or_extrapolated_within_the_margin() {
+    let f = |_: f64, _: f64| 0.0;
+    let warp = |x: f64, y: f64| [0.0, 0.0, 0.1 + 0.001 * x + 0.002 * y];
+    let g = grid(5, 4, (10.0, 10.0), f, warp);
+    let inside = [20.0, 15.0, 0.0];
+    let near = [43.0, 15.0, 0.0]; // 3 mm beyond x = 40
+    let far = [55.0, 35.0, 0.0];
+    let left = Corrector::new(&g, Options::default()).unwrap();
+    let r = left.correct(&[inside, near, far]);
+    assert_eq!(r[0].placement, Placement::Inside);
+    assert_eq!(r[1].placement, Placement::Outside);
+    assert!((r[1].outside_mm - 3.0).abs() < 1e-9);
+    assert_eq!(r[1].displacement, [0.0; 3]);
+    let t = Totals::of(&r);
+    assert_eq!((t.nodes, t.corrected, t.outside), (3, 1, 2));
+    let ext = Corrector::new(
+        &g,
+        Options {
+            margin_mm: 5.0,
+            ..Options::default()
+        },
+    )
+    .unwrap();
+    let r = ext.correct(&[near, far]);
+    assert_eq!(r[0].placement, Placement::Extrapolated);
+    assert!(
+        (r[0].displacement[2] + warp(43.0, 15.0)[2]).abs() < 1e-12,
+        "{:?}",
+        r[0]
+    );
+    assert_eq!(r[1].placement, Placement::Outside);
+}
+
+#[test]
+fn options_out_of_range_are_named() {
+    let g = grid(2, 2, (1.0, 1.0), |_, _| 0.0, |_, _| [0.0; 3]);
+    for (o, want) in [
+        (
+            Options {
+                gain: 0.0,
+                ..Options::default()
+            },
+            "gain = 0",
+        ),
+        (
+            Options {
+                tool: Tool::Ball { radius: -1.0 },
+                ..Options::default()
+            },
+            "ball radius",
+        ),
+        (
+            Options {
+                margin_mm: f64::NAN,
+                ..Options::default()
+            },
+            "margin",
+        ),
+    ] {
+        let e = Corrector::new(&g, o).err().unwrap().to_string();
+        assert!(e.contains(want), "{e}");
+    }
+}

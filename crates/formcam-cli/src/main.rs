@@ -1,6 +1,7 @@
 //! The `formcam` command line: reads job files, runs the processes of the
 //! library crates and writes their outputs atomically.
 
+mod correct;
 mod machine;
 mod output;
 mod plot;
@@ -35,6 +36,16 @@ enum Command {
         /// outputs, summary.json).
         #[arg(short, long)]
         output: Option<PathBuf>,
+    },
+    /// Mould correction: `formcam correct --measurements cmm.csv --program
+    /// mould.nc -o corrected.nc`; `formcam correct simulate SCENARIO -o OUT`
+    /// runs the closed loop.
+    #[command(args_conflicts_with_subcommands = true)]
+    Correct {
+        #[command(subcommand)]
+        what: Option<CorrectCommand>,
+        #[command(flatten)]
+        args: correct::CorrectArgs,
     },
     /// Machine files: the chain as a table, forward kinematics.
     Machine {
@@ -75,6 +86,18 @@ enum WindCommand {
         /// The job file (TOML with [mandrel], [winding], [eye] and [machine]).
         job: PathBuf,
         /// Output folder (axes.csv, band.csv and the eye outputs, summary.json).
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+}
+
+#[derive(Debug, Subcommand)]
+enum CorrectCommand {
+    /// The closed-loop check: mill, mould with a warp, measure, correct, again.
+    Simulate {
+        /// The scenario (TOML with [surface], [program], [warp], [cmm], [loop]).
+        scenario: PathBuf,
+        /// Output folder (programs, CMM reports, report.json, convergence.svg).
         #[arg(short, long)]
         output: PathBuf,
     },
@@ -141,6 +164,12 @@ fn main() -> ExitCode {
                     output,
                 },
         } => machine::fk(&machine, &axes, &output).map(|s| println!("{s}")),
+        Command::Correct { what, args } => match what {
+            Some(CorrectCommand::Simulate { scenario, output }) => {
+                correct::simulate(&scenario, &output).map(|s| println!("{s}"))
+            }
+            None => correct::run(&args).map(|s| println!("{s}")),
+        },
         Command::Demo { examples, output } => wind::run_demo(&examples, &output),
     };
     finish(result)

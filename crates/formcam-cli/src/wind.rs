@@ -856,6 +856,14 @@ pub fn run_demo(examples: &Path, out: &Path) -> Result<(), CliError> {
             println!("{}", run_wind_file(job, &out.join(&name))?);
             continue;
         }
+        let text = fs::read_to_string(job)
+            .map_err(|e| CliError(format!("{}: cannot read the job file: {e}", job.display())))?;
+        if let Ok(table) = text.parse::<toml::Table>()
+            && crate::correct::is_scenario(&table)
+        {
+            println!("{}", crate::correct::simulate_text(job, &text, &out.join(&name))?);
+            continue;
+        }
         let j = read_job(job)?;
         let stage = if j.machine.is_some() && (j.post.is_some() || j.layer.is_some()) {
             Stage::Program

@@ -153,6 +153,20 @@ impl Grid {
         self.deviation[j * self.nu + i]
     }
 
+    /// The unit surface normal at point `i` of section `j`: the report's
+    /// normal where it gives one, else the cross product of the grid's
+    /// slopes (`along section x across sections`, by central differences).
+    pub fn normal_at(&self, i: usize, j: usize) -> V3 {
+        if let Some(n) = &self.normal {
+            return n[j * self.nu + i];
+        }
+        let (i0, i1) = (i.saturating_sub(1), (i + 1).min(self.nu - 1));
+        let (j0, j1) = (j.saturating_sub(1), (j + 1).min(self.nv - 1));
+        let du = sub(self.at(i1, j), self.at(i0, j));
+        let dv = sub(self.at(i, j1), self.at(i, j0));
+        unit(crate::vec3::cross(du, dv))
+    }
+
     /// The number of facets.
     pub fn facets(&self) -> usize {
         (self.nu - 1) * (self.nv - 1)

@@ -16,18 +16,22 @@
 //!   `-gain * D(s, t)` ([`Tool`]: point or ball-end).
 //! * [`simulate`] — the closed-loop check: mill, mould with a warp, measure,
 //!   correct, again.
+//! * [`NodeTable`] — a tool path given as a CSV of nodes.
 
 mod correct;
 mod error;
 mod grid;
 mod measure;
+mod nodes;
 mod patch;
+pub mod simulate;
 mod smooth;
 mod vec3;
 
 pub use correct::{Corrector, NodeCorrection, Options, Placement, Tool, Totals};
 pub use error::CorrectError;
 pub use grid::Grid;
+pub use nodes::NodeTable;
 pub use measure::{MeasuredPoint, Measurements, Section};
 pub use patch::{Interpolation, Surface};
 pub use smooth::{Smoothing, smooth};

@@ -1,0 +1,110 @@
+//! Everything that can stop a dressing computation.
+
+use formcam_nc::NcError;
+use thiserror::Error;
+
+/// Everything that can stop a dressing computation. Messages are one line and
+/// name the job field (dotted, as users write it) and what is allowed.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum DressError {
+    /// A job field is out of range or inconsistent with the others.
+    #[error("{field} = {value}: {reason}")]
+    Field {
+        /// Dotted name of the field, e.g. `wheel.r2`.
+        field: String,
+        /// The value as given, with its unit.
+        value: String,
+        /// What is wrong and what is allowed.
+        reason: String,
+    },
+    /// A job field that must be there is missing.
+    #[error("{field}: {reason}")]
+    Missing {
+        /// Dotted name of the field.
+        field: String,
+        /// What it is needed for.
+        reason: String,
+    },
+    /// The job's TOML could not be read (syntax, unknown fields, types).
+    #[error("line {line}, column {column}: {message}")]
+    Toml {
+        /// 1-based line of the problem (0 when unknown).
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// What the TOML reader said.
+        message: String,
+    },
+    /// A user's initial wheel contour cannot be used.
+    #[error("process.initial_contour: {0}")]
+    Contour(String),
+    /// The NC program could not be written.
+    #[error("program: {0}")]
+    Nc(#[from] NcError),
+}
+
+impl DressError {
+    /// A field error: `field = value: reason`.
+    pub fn field(field: impl Into<String>, value: impl Into<String>, reason: impl Into<String>) -> Self {
+        Self::Field {
+            field: field.into(),
+            value: value.into(),
+            reason: reason.into(),
+        }
+    }
+}
+
+/// A length for messages: `0.296 mm` (up to 6 decimals, trailing zeros cut).
+pub(crate) fn mm(v: f64) -> String {
+    format!("{} mm", num(v))
+}
+
+/// An angle for messages in degrees: `45°`.
+pub(crate) fn deg(v: f64) -> String {
+    format!("{}°", num(v))
+}
+
+/// A number for messages: up to 6 decimals, trailing zeros cut; `NaN`, `inf`.
+pub(crate) fn num(v: f64) -> String {
+    if !v.is_finite() {
+        return format!("{v}");
+    }
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.into() }
+}
+
+/// Checks that `v` is finite, naming `field` (with `unit` for the message).
+pub(crate) fn finite(field: &str, v: f64, unit: &str) -> Result<f64, DressError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(DressError::field(
+            field,
+            format!("{v}{unit}"),
+            "must be a finite number",
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_for_messages() {
+        assert_eq!(num(0.296), "0.296");
+        assert_eq!(num(6.0), "6");
+        assert_eq!(num(-0.0000001), "0");
+        assert_eq!(mm(0.9), "0.9 mm");
+        assert_eq!(deg(45.0), "45°");
+        assert_eq!(num(f64::NAN), "NaN");
+    }
+
+    #[test]
+    fn field_message_is_one_line() {
+        let e = DressError::field("wheel.r2", mm(0.9), "too big");
+        assert_eq!(e.to_string(), "wheel.r2 = 0.9 mm: too big");
+        assert!(finite("process.step", f64::NAN, " mm").is_err());
+    }
+}

@@ -91,10 +91,14 @@ pub fn parse_tool(s: &str) -> Result<Tool, CliError> {
     }
     if let Some(r) = s.strip_prefix("ball:") {
         let radius: f64 = r.trim().parse().map_err(|_| {
-            CliError(format!("--tool {s}: the radius `{r}` is not a number (e.g. ball:6)"))
+            CliError(format!(
+                "--tool {s}: the radius `{r}` is not a number (e.g. ball:6)"
+            ))
         })?;
         if !(radius.is_finite() && radius > 0.0) {
-            return Err(CliError(format!("--tool {s}: the ball radius must be > 0 mm")));
+            return Err(CliError(format!(
+                "--tool {s}: the ball radius must be > 0 mm"
+            )));
         }
         return Ok(Tool::Ball { radius });
     }
@@ -273,7 +277,7 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
         && tp.arcs_linearised > 0
     {
         header.push(format!(
-            "formcam correct: {} arc blocks (G2/G3) linearised as G1 chords within {} mm",
+            "formcam correct: {} arc blocks G2/G3 linearised as G1 chords within {} mm",
             tp.arcs_linearised, a.arc_tolerance
         ));
     }
@@ -314,7 +318,10 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
     entry["iteration"] = json!(history.len() + 1);
     history.push(entry);
     let (arcs, flavor) = match &source {
-        Source::Gcode(tp) => (tp.arcs_linearised, format!("{:?}", tp.flavor()).to_lowercase()),
+        Source::Gcode(tp) => (
+            tp.arcs_linearised,
+            format!("{:?}", tp.flavor()).to_lowercase(),
+        ),
         Source::Table(_) => (0, "csv".into()),
     };
     let report = json!({
@@ -379,8 +386,8 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
         (format!("{stem}.deviations.svg"), deviations_svg),
         (format!("{stem}.displacement.svg"), displacement_svg),
     ];
-    let mut report_json = serde_json::to_string_pretty(&report)
-        .map_err(|e| CliError(format!("report: {e}")))?;
+    let mut report_json =
+        serde_json::to_string_pretty(&report).map_err(|e| CliError(format!("report: {e}")))?;
     report_json.push('\n');
     match &report_path {
         Some(rp) => {
@@ -450,10 +457,12 @@ pub fn deviations_svg(m: &Measurements, grid: &Grid) -> Result<Vec<u8>, CliError
         }
         series.push((s.name.clone(), pts));
     }
-    let (x1, y0, y1) = series.iter().flat_map(|s| s.1.iter()).fold(
-        (1e-9f64, -1e-6f64, 1e-6f64),
-        |(x1, y0, y1), p| (x1.max(p.0), y0.min(p.1), y1.max(p.1)),
-    );
+    let (x1, y0, y1) = series
+        .iter()
+        .flat_map(|s| s.1.iter())
+        .fold((1e-9f64, -1e-6f64, 1e-6f64), |(x1, y0, y1), p| {
+            (x1.max(p.0), y0.min(p.1), y1.max(p.1))
+        });
     let pad = 0.08 * (y1 - y0);
     let mut svg = String::new();
     {
@@ -519,11 +528,25 @@ pub fn displacement_svg(
         let (i, j) = (c.facet.0 as usize, c.facet.1 as usize);
         let n = grid.normal_at(i.min(grid.nu - 1), j.min(grid.nv - 1));
         let d = c.displacement;
-        pts.push((p[0], p[1], d[0] * n[0] + d[1] * n[1] + d[2] * n[2], c.placement));
+        pts.push((
+            p[0],
+            p[1],
+            d[0] * n[0] + d[1] * n[1] + d[2] * n[2],
+            c.placement,
+        ));
     }
     let lim = pts.iter().fold(1e-9f64, |m, p| m.max(p.2.abs()));
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-    for p in pts.iter().map(|p| (p.0, p.1)).chain(grid.nominal.iter().map(|q| (q[0], q[1]))) {
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for p in pts
+        .iter()
+        .map(|p| (p.0, p.1))
+        .chain(grid.nominal.iter().map(|q| (q[0], q[1])))
+    {
         x0 = x0.min(p.0);
         x1 = x1.max(p.0);
         y0 = y0.min(p.1);
@@ -580,6 +603,83 @@ pub fn displacement_svg(
         root.present().map_err(|e| err(e.to_string()))?;
     }
     Ok(svg.into_bytes())
+}
+
+/// A correction job file: `[correct]` with the options of the command line
+/// (`measurements`, `program`, paths relative to the job's folder; `tool`,
+/// `interpolation`, `gain`, `margin_mm`, `noise_mm`, `arc_tolerance_mm`,
+/// `dialect`, `points_per_section`).
+#[derive(Debug, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct JobFile {
+    correct: JobTable,
+}
+
+#[derive(Debug, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct JobTable {
+    measurements: PathBuf,
+    program: PathBuf,
+    #[serde(default = "default_tool")]
+    tool: String,
+    #[serde(default = "default_interpolation")]
+    interpolation: String,
+    #[serde(default = "default_gain")]
+    gain: f64,
+    #[serde(default)]
+    margin_mm: f64,
+    #[serde(default)]
+    noise_mm: f64,
+    #[serde(default = "default_arc_tolerance")]
+    arc_tolerance_mm: f64,
+    dialect: Option<String>,
+    points_per_section: Option<usize>,
+}
+
+fn default_tool() -> String {
+    "point".into()
+}
+
+fn default_arc_tolerance() -> f64 {
+    0.001
+}
+
+/// Whether a TOML table is a correction job (it has `[correct]`).
+pub fn is_job(table: &toml::Table) -> bool {
+    table.contains_key("correct")
+}
+
+/// Runs a correction job file into `out` (`corrected.<ext>`, `report.json`,
+/// the plots).
+pub fn run_job_text(path: &Path, text: &str, out: &Path) -> Result<String, CliError> {
+    let f: JobFile = toml::from_str(text)
+        .map_err(|e| CliError(format!("{}: {}", path.display(), e.message())))?;
+    let j = f.correct;
+    let base = path.parent().unwrap_or(Path::new("."));
+    let program = base.join(&j.program);
+    let name = format!(
+        "corrected.{}",
+        program
+            .extension()
+            .map_or("nc".into(), |e| e.to_string_lossy().into_owned())
+    );
+    let args = CorrectArgs {
+        measurements: Some(base.join(&j.measurements)),
+        program: Some(program),
+        output: Some(out.join(name)),
+        gain: j.gain,
+        tool: j.tool,
+        interpolation: j.interpolation,
+        report: Some(out.join("report.json")),
+        margin: j.margin_mm,
+        noise: j.noise_mm,
+        arc_tolerance: j.arc_tolerance_mm,
+        dialect: j.dialect,
+        points_per_section: j.points_per_section,
+    };
+    // A fresh report per demo run: the history is for runs on real parts.
+    let _ = fs::remove_file(out.join("report.json"));
+    run(&args)
 }
 
 /// A closed-loop scenario file.
@@ -665,7 +765,12 @@ fn scenario_of(path: &Path, text: &str) -> Result<(Scenario, Vec<usize>), CliErr
     let at = |m: String| CliError(format!("{}: {m}", path.display()));
     let f: ScenarioFile = toml::from_str(text).map_err(|e| at(e.message().to_string()))?;
     let need = |v: Option<f64>, name: &str| {
-        v.ok_or_else(|| at(format!("surface.{name}: missing for surface.kind = \"{}\"", f.surface.kind)))
+        v.ok_or_else(|| {
+            at(format!(
+                "surface.{name}: missing for surface.kind = \"{}\"",
+                f.surface.kind
+            ))
+        })
     };
     let shape = match f.surface.kind.as_str() {
         "panel" => Shape::Panel {
@@ -756,7 +861,10 @@ pub fn simulate_text(path: &Path, text: &str, out: &Path) -> Result<String, CliE
     let mut rounds = Vec::new();
     for (k, r) in result.rounds.iter().enumerate() {
         files.push((format!("program-{k}.nc"), r.program.clone().into_bytes()));
-        files.push((format!("cmm-{k}.csv"), cmm_csv(&r.measurements).into_bytes()));
+        files.push((
+            format!("cmm-{k}.csv"),
+            cmm_csv(&r.measurements).into_bytes(),
+        ));
         rounds.push(json!({
             "iteration": k,
             "measured_max_mm": r.measured_max_mm,
@@ -766,7 +874,10 @@ pub fn simulate_text(path: &Path, text: &str, out: &Path) -> Result<String, CliE
         }));
     }
     let (Some(first), Some(last)) = (result.rounds.first(), result.rounds.last()) else {
-        return Err(CliError(format!("{}: the loop ran no round", path.display())));
+        return Err(CliError(format!(
+            "{}: the loop ran no round",
+            path.display()
+        )));
     };
     let grid_of = |m: &Measurements| {
         Grid::from_measurements(m, None).map_err(|e| CliError(format!("{}: {e}", path.display())))
@@ -824,28 +935,70 @@ pub fn simulate_text(path: &Path, text: &str, out: &Path) -> Result<String, CliE
     ))
 }
 
+/// A named, coloured line of a plot.
+type Line = (&'static str, Vec<(f64, f64)>, RGBColor);
+
 /// Max and RMS deviation per round, log scale.
 fn convergence_svg(r: &LoopResult) -> Result<Vec<u8>, CliError> {
     let err = plot_err("convergence.svg");
     let n = r.rounds.len();
-    let lines: [(&str, Vec<(f64, f64)>, RGBColor); 4] = [
-        ("true max", r.rounds.iter().enumerate().map(|(k, x)| (k as f64, x.true_max_mm)).collect(), PALETTE[3]),
-        ("true rms", r.rounds.iter().enumerate().map(|(k, x)| (k as f64, x.true_rms_mm)).collect(), PALETTE[0]),
-        ("measured max", r.rounds.iter().enumerate().map(|(k, x)| (k as f64, x.measured_max_mm)).collect(), PALETTE[1]),
-        ("measured rms", r.rounds.iter().enumerate().map(|(k, x)| (k as f64, x.measured_rms_mm)).collect(), PALETTE[2]),
+    let lines: [Line; 4] = [
+        (
+            "true max",
+            r.rounds
+                .iter()
+                .enumerate()
+                .map(|(k, x)| (k as f64, x.true_max_mm))
+                .collect(),
+            PALETTE[3],
+        ),
+        (
+            "true rms",
+            r.rounds
+                .iter()
+                .enumerate()
+                .map(|(k, x)| (k as f64, x.true_rms_mm))
+                .collect(),
+            PALETTE[0],
+        ),
+        (
+            "measured max",
+            r.rounds
+                .iter()
+                .enumerate()
+                .map(|(k, x)| (k as f64, x.measured_max_mm))
+                .collect(),
+            PALETTE[1],
+        ),
+        (
+            "measured rms",
+            r.rounds
+                .iter()
+                .enumerate()
+                .map(|(k, x)| (k as f64, x.measured_rms_mm))
+                .collect(),
+            PALETTE[2],
+        ),
     ];
     let (lo, hi) = lines
         .iter()
         .flat_map(|l| l.1.iter().map(|p| p.1))
         .filter(|v| *v > 0.0)
         .fold((f64::INFINITY, 0.0f64), |(a, b), v| (a.min(v), b.max(v)));
-    let (lo, hi) = if lo.is_finite() { (lo / 2.0, hi * 2.0) } else { (1e-4, 1.0) };
+    let (lo, hi) = if lo.is_finite() {
+        (lo / 2.0, hi * 2.0)
+    } else {
+        (1e-4, 1.0)
+    };
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (800, 500)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
         let mut chart = ChartBuilder::on(&root)
-            .caption("Closed loop: deviation of the part per round", ("sans-serif", 18))
+            .caption(
+                "Closed loop: deviation of the part per round",
+                ("sans-serif", 18),
+            )
             .margin(10)
             .x_label_area_size(35)
             .y_label_area_size(70)

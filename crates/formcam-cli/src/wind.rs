@@ -861,7 +861,19 @@ pub fn run_demo(examples: &Path, out: &Path) -> Result<(), CliError> {
         if let Ok(table) = text.parse::<toml::Table>()
             && crate::correct::is_scenario(&table)
         {
-            println!("{}", crate::correct::simulate_text(job, &text, &out.join(&name))?);
+            println!(
+                "{}",
+                crate::correct::simulate_text(job, &text, &out.join(&name))?
+            );
+            continue;
+        }
+        if let Ok(table) = text.parse::<toml::Table>()
+            && crate::correct::is_job(&table)
+        {
+            println!(
+                "{}",
+                crate::correct::run_job_text(job, &text, &out.join(&name))?
+            );
             continue;
         }
         let j = read_job(job)?;

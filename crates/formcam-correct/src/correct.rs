@@ -68,6 +68,11 @@ impl Options {
     }
 }
 
+/// A node whose foot lies beyond the measured area's edge by at most this
+/// (mm) counts as inside: the patches only approximate the surface, so the
+/// foot of a node over the edge can land a few micrometres beyond it.
+pub const EDGE_TOLERANCE_MM: f64 = 0.01;
+
 /// Where a node lies relative to the measured area.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Placement {
@@ -220,7 +225,7 @@ impl<'g> Corrector<'g> {
                 .f;
             let d = norm(sub(a, b));
             let size = norm(sub(g.at(i + 1, j + 1), g.at(i, j)));
-            if d > 1e-9 * (1.0 + size) {
+            if d > EDGE_TOLERANCE_MM + 1e-9 * size {
                 outside_mm = d;
                 ext = (free.s, free.t);
             }

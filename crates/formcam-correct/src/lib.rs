@@ -28,10 +28,10 @@ pub mod simulate;
 mod smooth;
 mod vec3;
 
-pub use correct::{Corrector, NodeCorrection, Options, Placement, Tool, Totals};
+pub use correct::{Corrector, EDGE_TOLERANCE_MM, NodeCorrection, Options, Placement, Tool, Totals};
 pub use error::CorrectError;
 pub use grid::Grid;
-pub use nodes::NodeTable;
 pub use measure::{MeasuredPoint, Measurements, Section};
+pub use nodes::NodeTable;
 pub use patch::{Interpolation, Surface};
 pub use smooth::{Smoothing, smooth};

@@ -221,8 +221,8 @@ impl Measurements {
             stmt.push_str(l);
             let s = std::mem::take(&mut stmt);
             let u = s.to_ascii_uppercase();
-            if u.starts_with("UNITS/") {
-                let unit = u[6..].split(',').next().unwrap_or("").trim();
+            if let Some(rest) = u.strip_prefix("UNITS/") {
+                let unit = rest.split(',').next().unwrap_or("").trim();
                 unit_scale = match unit {
                     "MM" => 1.0,
                     "INCH" => 25.4,

@@ -24,7 +24,11 @@ impl NodeTable {
             rows: Vec::new(),
             nodes: Vec::new(),
             decimals: 0,
-            sep: if text.contains(';') && !text.contains(',') { ';' } else { ',' },
+            sep: if text.contains(';') && !text.contains(',') {
+                ';'
+            } else {
+                ','
+            },
         };
         for (k, l) in t.lines.iter().enumerate() {
             let s = l.trim();
@@ -44,7 +48,11 @@ impl NodeTable {
             let mut p = [0.0; 3];
             for c in 0..3 {
                 let v: f64 = f[c].parse().map_err(|_| {
-                    CorrectError::Program(format!("line {}: `{s}`: `{}` is not a number", k + 1, f[c]))
+                    CorrectError::Program(format!(
+                        "line {}: `{s}`: `{}` is not a number",
+                        k + 1,
+                        f[c]
+                    ))
                 })?;
                 if !v.is_finite() {
                     return Err(CorrectError::Program(format!(
@@ -77,7 +85,13 @@ impl NodeTable {
         for (&row, p) in self.rows.iter().zip(positions) {
             let l = &lines[row];
             let rest: Vec<&str> = l.trim().split(self.sep).skip(3).collect();
-            let mut s = format!("{:.d$}{sep}{:.d$}{sep}{:.d$}", p[0], p[1], p[2], sep = self.sep);
+            let mut s = format!(
+                "{:.d$}{sep}{:.d$}{sep}{:.d$}",
+                p[0],
+                p[1],
+                p[2],
+                sep = self.sep
+            );
             for r in rest {
                 s.push(self.sep);
                 s.push_str(r);
@@ -100,7 +114,9 @@ mod tests {
         let t = NodeTable::from_csv(text).unwrap();
         assert_eq!(t.nodes.len(), 2);
         assert_eq!(t.write(&t.nodes), text);
-        let e = NodeTable::from_csv("x,y,z\n1,2,nan\n").unwrap_err().to_string();
+        let e = NodeTable::from_csv("x,y,z\n1,2,nan\n")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("line 2") && e.contains("not finite"), "{e}");
     }
 }

@@ -112,7 +112,10 @@ impl Scenario {
             }
         }
         if !(self.warp_amplitude.is_finite() && self.warp_amplitude >= 0.0) {
-            return bad(format!("warp.amplitude = {}: must be >= 0", self.warp_amplitude));
+            return bad(format!(
+                "warp.amplitude = {}: must be >= 0",
+                self.warp_amplitude
+            ));
         }
         if !(self.noise.is_finite() && self.noise >= 0.0) {
             return bad(format!("cmm.noise = {}: must be >= 0", self.noise));
@@ -212,7 +215,12 @@ impl Scenario {
             self.step,
             self.step_over
         ));
-        let clearance = self.height(0.0, 0.0).0.max(self.height(self.length, self.width).0) + r + 20.0;
+        let clearance = self
+            .height(0.0, 0.0)
+            .0
+            .max(self.height(self.length, self.width).0)
+            + r
+            + 20.0;
         for k in 0..ny {
             let y = self.width * k as f64 / (ny - 1) as f64;
             for m in 0..nx {
@@ -406,7 +414,8 @@ impl Scenario {
                 if n.kind == NodeKind::Rapid {
                     n.position
                 } else {
-                    it.next().map_or(n.position, |c| add(n.position, c.displacement))
+                    it.next()
+                        .map_or(n.position, |c| add(n.position, c.displacement))
                 }
             })
             .collect();

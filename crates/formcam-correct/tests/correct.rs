@@ -1,4 +1,9 @@
-#![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::needless_range_loop,
+    missing_docs
+)]
 //! The correction against analytic cases.
 
 use formcam_correct::{Corrector, Grid, Interpolation, Options, Placement, Tool, Totals};

@@ -780,7 +780,7 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
         flavor,
         format: NumberFormat {
             decimals: if max_dec == 0 { 3 } else { max_dec },
-            padded: padded && any_point,
+            padded: padded && any_point && max_dec > 0,
             whole_point: whole_point || !whole_bare,
             spaced: spaced_lines >= joined_lines,
         },
@@ -825,10 +825,13 @@ impl Toolpath {
         let mut header_done = header.is_empty();
         // The value each axis has in the new program (mm), as printed.
         let mut written = [f64::NAN; 3];
-        for (li, line) in self.lines.iter().enumerate() {
+        for line in &self.lines {
             if !header_done {
                 let lt = t[line.text.clone()].trim_start();
-                let lead = li == 0 && (lt.starts_with('%') || lt.starts_with(['O', 'o']));
+                // After the leading `%` and program-number lines.
+                let lead = lt.starts_with('%')
+                    || (lt.starts_with(['O', 'o'])
+                        && lt[1..].starts_with(|c: char| c.is_ascii_digit()));
                 if !lead {
                     for h in header {
                         match self.flavor {

@@ -302,69 +302,78 @@ impl<'g> Surface<'g> {
     /// line search keeps every step a descent). Without `clamp`, the facet's
     /// bilinear form is continued beyond its edges (for extrapolation).
     pub(crate) fn foot(&self, i: usize, j: usize, p: V3, clamp: bool) -> Foot {
-        let eval = |s: f64, t: f64| {
-            if clamp {
-                self.jet(i, j, s, t)
-            } else {
-                self.bilinear(i, j, s, t)
-            }
-        };
         let (lo, hi) = if clamp { (0.0, 1.0) } else { (-50.0, 51.0) };
-        let (mut s, mut t) = (0.5, 0.5);
-        let mut jet = eval(s, t);
-        let mut r = sub(jet.f, p);
-        let mut f = dot(r, r);
-        for _ in 0..40 {
-            let gs = dot(r, jet.fs);
-            let gt = dot(r, jet.ft);
-            let a = dot(jet.fs, jet.fs);
-            let b = dot(jet.fs, jet.ft);
-            let c = dot(jet.ft, jet.ft);
-            let (mut hss, mut hst, mut htt) = (
-                a + dot(r, jet.fss),
-                b + dot(r, jet.fst),
-                c + dot(r, jet.ftt),
-            );
-            if hss <= 0.0 || htt <= 0.0 || hss * htt - hst * hst <= 1e-14 * (a * c).max(1e-300) {
-                (hss, hst, htt) = (a, b, c);
-            }
-            // Active bounds: at a bound with the gradient pushing out.
-            let fix_s = (s <= lo && gs > 0.0) || (s >= hi && gs < 0.0);
-            let fix_t = (t <= lo && gt > 0.0) || (t >= hi && gt < 0.0);
-            let (ds, dt) = match (fix_s, fix_t) {
-                (true, true) => break,
-                (true, false) => (0.0, if htt > 0.0 { -gt / htt } else { 0.0 }),
-                (false, true) => (if hss > 0.0 { -gs / hss } else { 0.0 }, 0.0),
-                (false, false) => {
-                    let det = hss * htt - hst * hst;
-                    if det.abs() < 1e-300 {
-                        break;
-                    }
-                    ((-gs * htt + gt * hst) / det, (-gt * hss + gs * hst) / det)
-                }
-            };
-            let mut k = 1.0;
-            let mut moved = false;
-            for _ in 0..30 {
-                let ns = (s + k * ds).clamp(lo, hi);
-                let nt = (t + k * dt).clamp(lo, hi);
-                let nj = eval(ns, nt);
-                let nr = sub(nj.f, p);
-                let nf = dot(nr, nr);
-                if nf <= f {
-                    let step = (ns - s).abs() + (nt - t).abs();
-                    (s, t, jet, r, f) = (ns, nt, nj, nr, nf);
-                    moved = step > 1e-14;
+        let linear = newton(|s, t| self.bilinear(i, j, s, t), p, lo, hi, (0.5, 0.5));
+        if !clamp || self.kind == Interpolation::Bilinear {
+            return linear;
+        }
+        // Bicubic: from the bilinear foot, which is close.
+        newton(|s, t| self.jet(i, j, s, t), p, lo, hi, (linear.s, linear.t))
+    }
+}
+
+/// Minimises `|F(s, t) - p|^2` over `[lo, hi]^2` from `start`: projected
+/// Newton, Gauss–Newton where the Hessian is not positive definite, a
+/// halving line search keeping every step a descent.
+#[inline(always)]
+fn newton(eval: impl Fn(f64, f64) -> Jet, p: V3, lo: f64, hi: f64, start: (f64, f64)) -> Foot {
+    let (mut s, mut t) = start;
+    let mut jet = eval(s, t);
+    let mut r = sub(jet.f, p);
+    let mut f = dot(r, r);
+    for _ in 0..40 {
+        let gs = dot(r, jet.fs);
+        let gt = dot(r, jet.ft);
+        let a = dot(jet.fs, jet.fs);
+        let b = dot(jet.fs, jet.ft);
+        let c = dot(jet.ft, jet.ft);
+        let (mut hss, mut hst, mut htt) = (
+            a + dot(r, jet.fss),
+            b + dot(r, jet.fst),
+            c + dot(r, jet.ftt),
+        );
+        if hss <= 0.0 || htt <= 0.0 || hss * htt - hst * hst <= 1e-14 * (a * c).max(1e-300) {
+            (hss, hst, htt) = (a, b, c);
+        }
+        // Active bounds: at a bound with the gradient pushing out.
+        let fix_s = (s <= lo && gs > 0.0) || (s >= hi && gs < 0.0);
+        let fix_t = (t <= lo && gt > 0.0) || (t >= hi && gt < 0.0);
+        let (ds, dt) = match (fix_s, fix_t) {
+            (true, true) => break,
+            (true, false) => (0.0, if htt > 0.0 { -gt / htt } else { 0.0 }),
+            (false, true) => (if hss > 0.0 { -gs / hss } else { 0.0 }, 0.0),
+            (false, false) => {
+                let det = hss * htt - hst * hst;
+                if det.abs() < 1e-300 {
                     break;
                 }
-                k *= 0.5;
+                ((-gs * htt + gt * hst) / det, (-gt * hss + gs * hst) / det)
             }
-            if !moved {
+        };
+        if ds.abs() + dt.abs() < 1e-13 {
+            break;
+        }
+        let mut k = 1.0;
+        let mut moved = false;
+        for _ in 0..20 {
+            let ns = (s + k * ds).clamp(lo, hi);
+            let nt = (t + k * dt).clamp(lo, hi);
+            let nj = eval(ns, nt);
+            let nr = sub(nj.f, p);
+            let nf = dot(nr, nr);
+            if nf <= f {
+                let step = (ns - s).abs() + (nt - t).abs();
+                (s, t, jet, r, f) = (ns, nt, nj, nr, nf);
+                moved = step > 1e-13;
                 break;
             }
+            k *= 0.5;
         }
-        Foot { s, t, d2: f }
+        if !moved {
+            break;
+        }
     }
+    Foot { s, t, d2: f }
 }
 
 #[cfg(test)]

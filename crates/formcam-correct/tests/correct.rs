@@ -264,3 +264,42 @@ fn options_out_of_range_are_named() {
         assert!(e.contains(want), "{e}");
     }
 }
+
+#[test]
+fn bicubic_halves_the_residual_of_a_smooth_warp() {
+    // A doubly curved surface with a smooth warp, 9 x 7 measured points:
+    // the error of the interpolated correction at dense nodes.
+    let f = |x: f64, y: f64| (x - 80.0).powi(2) / 1600.0 + (y - 60.0).powi(2) / 1200.0;
+    let w = |x: f64, y: f64| {
+        0.4 * (std::f64::consts::PI * x / 160.0).sin() * (std::f64::consts::PI * y / 120.0).sin()
+            + 0.1 * (3.0 * x / 160.0).cos()
+    };
+    let g = grid(9, 7, (20.0, 20.0), f, |x, y| [0.0, 0.0, w(x, y)]);
+    let mut worst = Vec::new();
+    for kind in KINDS {
+        let corr = Corrector::new(
+            &g,
+            Options {
+                interpolation: kind,
+                ..Options::default()
+            },
+        )
+        .unwrap();
+        let mut e = 0.0f64;
+        for p in nodes(&f, 160.0, 120.0, 41) {
+            let c = corr.correct_node(p);
+            e = e.max((c.displacement[2] + w(p[0], p[1])).abs());
+        }
+        worst.push(e);
+    }
+    eprintln!(
+        "largest error: bilinear {:.5} mm, bicubic {:.5} mm",
+        worst[0], worst[1]
+    );
+    assert!(
+        worst[1] < 0.5 * worst[0],
+        "bilinear {} vs bicubic {}",
+        worst[0],
+        worst[1]
+    );
+}

@@ -36,7 +36,7 @@ mod toolpath;
 
 pub use error::NcError;
 pub use post::{Dialect, write};
-pub use program::{AxisSpec, Block, Feed, Motion, Program};
+pub use program::{AxisSpec, Block, Feed, Motion, Plane, Program};
 pub use read::{read_cldata, read_gcode};
 pub use template::{Template, write_template};
 pub use toolpath::{Flavor, Node, NodeKind, Toolpath, ToolpathOptions, read_toolpath};

@@ -22,6 +22,9 @@
 //! * Sinumerik 840D: every block numbered (`N10`, `N20`, …; comment lines
 //!   are not); single-letter axes are written `X12.5`, longer names (`J1`)
 //!   `J1=12.5`; header `G90 G94 G71`, end `M30`.
+//! * A program's working plane ([`Program::plane`](crate::Program::plane)),
+//!   where set, opens the G-code dialects' setup line (`G18 G90 G94 G71`;
+//!   Marlin: a line of its own); CLDATA and templates do not write it.
 //! * ISO: `%`, `O0001 (NAME)`, `G21 G90 G94`, two-digit `G00`/`G01`, whole
 //!   numbers with a decimal point (`X12.`, as Fanuc-style controls without
 //!   decimal-point programming would otherwise read micrometres), `M30`, `%`.

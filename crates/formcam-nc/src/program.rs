@@ -93,6 +93,28 @@ impl Block {
     }
 }
 
+/// The working plane (of circular interpolation and tool compensation).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Plane {
+    /// X-Y (`G17`).
+    Xy,
+    /// Z-X (`G18`): lathes and grinders with the Z and X axes.
+    Zx,
+    /// Y-Z (`G19`).
+    Yz,
+}
+
+impl Plane {
+    /// The G code that selects the plane.
+    pub fn code(self) -> &'static str {
+        match self {
+            Plane::Xy => "G17",
+            Plane::Zx => "G18",
+            Plane::Yz => "G19",
+        }
+    }
+}
+
 /// An NC program: axes, header comments and motion blocks.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Program {
@@ -104,6 +126,9 @@ pub struct Program {
     pub header_comments: Vec<String>,
     /// The motion blocks.
     pub blocks: Vec<Block>,
+    /// The working plane, selected in the heading of the G-code dialects
+    /// (`G17`/`G18`/`G19`); `None`: not written.
+    pub plane: Option<Plane>,
 }
 
 impl Program {
@@ -114,6 +139,7 @@ impl Program {
             axes,
             header_comments: Vec::new(),
             blocks: Vec::new(),
+            plane: None,
         }
     }
 

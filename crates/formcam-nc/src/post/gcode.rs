@@ -207,13 +207,26 @@ fn header(out: &mut Out, p: &Program, st: &Style, ln: &mut LineNo) {
     for c in &p.header_comments {
         comment_line(out, st, c);
     }
+    let plane = |out: &mut Out, sep: char| {
+        if let Some(pl) = p.plane {
+            out.s(pl.code());
+            out.c(sep);
+        }
+    };
     match st.frame {
         Frame::Sinumerik => {
             ln.push(out);
+            plane(out, ' ');
             out.s("G90 G94 G71\n");
         }
-        Frame::Iso | Frame::LinuxCnc => out.s("G21 G90 G94\n"),
-        Frame::Marlin => out.s("G21\nG90\nG94\n"),
+        Frame::Iso | Frame::LinuxCnc => {
+            plane(out, ' ');
+            out.s("G21 G90 G94\n");
+        }
+        Frame::Marlin => {
+            plane(out, '\n');
+            out.s("G21\nG90\nG94\n");
+        }
     }
 }
 
@@ -540,5 +553,22 @@ mod tests {
             write_in(&p, &MARLIN, &mut o, threads).unwrap();
             assert!(o.finish() == one, "marlin with {threads} threads");
         }
+    }
+
+    #[test]
+    fn the_working_plane_opens_the_setup_line() {
+        let mut p = Program::new("ZX", vec![AxisSpec::linear("Z"), AxisSpec::linear("X")]);
+        p.blocks.push(Block::linear(vec![1.0, 2.0], Feed::PerMinute(100.0)));
+        p.plane = Some(crate::Plane::Zx);
+        let text = |p: &Program, st: &Style| {
+            let mut o = Out::new(Vec::new());
+            write_in(p, st, &mut o, 1).unwrap();
+            String::from_utf8(o.finish()).unwrap()
+        };
+        assert!(text(&p, &SINUMERIK).contains("N10 G18 G90 G94 G71\n"));
+        assert!(text(&p, &ISO).contains("G18 G21 G90 G94\n"));
+        assert!(text(&p, &MARLIN).contains("\nG18\nG21\n"));
+        p.plane = None;
+        assert!(text(&p, &SINUMERIK).contains("N10 G90 G94 G71\n"));
     }
 }

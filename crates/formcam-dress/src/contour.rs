@@ -166,7 +166,8 @@ pub(crate) fn cut(
     // Breakpoints: the range's ends and every vertex of either polyline
     // inside it, in order.
     let inner_g = &g[usize::from(has_left)..g.len() - usize::from(has_right)];
-    let inner_d = &d[d.partition_point(|p| p.x <= xa)..d.partition_point(|p| p.x < xb)];
+    let d0 = d.partition_point(|p| p.x <= xa);
+    let inner_d = &d[d0..d.partition_point(|p| p.x < xb).max(d0)];
     let (mut ig, mut id) = (0usize, 0usize);
     let (mut jg, mut jd) = (0usize, 0usize);
     let mut x = xa;
@@ -251,7 +252,8 @@ pub(crate) fn cut(
 pub(crate) struct Working {
     lo: Vec<Point>,
     hi: Vec<Point>,
-    scratch: Vec<Point>,
+    from_lo: Vec<Point>,
+    from_hi: Vec<Point>,
 }
 
 impl Working {
@@ -259,7 +261,8 @@ impl Working {
         Working {
             lo: c.points.clone(),
             hi: Vec::new(),
-            scratch: Vec::new(),
+            from_lo: Vec::new(),
+            from_hi: Vec::new(),
         }
     }
 
@@ -278,8 +281,8 @@ impl Working {
     /// there are neighbours.
     pub(crate) fn take(&mut self, xa: f64, xb: f64, g: &mut Vec<Point>) -> (bool, bool) {
         // Vertices of `lo` in the range (last first), then of `hi` (in order).
-        let mut from_lo = std::mem::take(&mut self.scratch);
-        from_lo.clear();
+        self.from_lo.clear();
+        self.from_hi.clear();
         while let Some(&p) = self.lo.last() {
             if p.x < xa {
                 break;
@@ -288,11 +291,9 @@ impl Working {
             if p.x > xb {
                 self.hi.push(p);
             } else {
-                from_lo.push(p);
+                self.from_lo.push(p);
             }
         }
-        g.clear();
-        let mark = g.len();
         while let Some(&p) = self.hi.last() {
             if p.x > xb {
                 break;
@@ -302,18 +303,17 @@ impl Working {
                 // The range moved right past it (then `from_lo` is empty).
                 self.lo.push(p);
             } else {
-                g.push(p);
+                self.from_hi.push(p);
             }
         }
         // g = left neighbour, lo's part, hi's part, right neighbour.
         let left = self.lo.last().copied();
         let right = self.hi.last().copied();
-        let head: Vec<Point> = left.into_iter().chain(from_lo.iter().rev().copied()).collect();
-        g.splice(mark..mark, head);
-        if let Some(r) = right {
-            g.push(r);
-        }
-        self.scratch = from_lo;
+        g.clear();
+        g.extend(left);
+        g.extend(self.from_lo.iter().rev());
+        g.extend_from_slice(&self.from_hi);
+        g.extend(right);
         (left.is_some(), right.is_some())
     }
 
@@ -332,11 +332,6 @@ impl Working {
         let mut pts = self.lo.clone();
         pts.extend(self.hi.iter().rev());
         Contour { points: pts }
-    }
-
-    /// The number of vertices.
-    pub(crate) fn len(&self) -> usize {
-        self.lo.len() + self.hi.len()
     }
 }
 

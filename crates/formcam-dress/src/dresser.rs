@@ -71,9 +71,11 @@ pub struct Dresser {
 pub struct Outline {
     /// The vertices, left to right.
     pub points: Vec<Point>,
-    /// The outward normal angle of each edge `points[j] -> points[j + 1]`,
-    /// rad in `[pi, 2 pi]`, non-decreasing (the periphery is convex).
-    pub normal_angles: Vec<f64>,
+    /// The outward unit normal of each edge `points[j] -> points[j + 1]`;
+    /// its angle runs over `[pi, 2 pi]`, non-decreasing (the periphery is convex).
+    pub normals: Vec<Point>,
+    /// The index of the lowest vertex.
+    pub bottom: usize,
 }
 
 impl Dresser {
@@ -181,23 +183,49 @@ impl Dresser {
             right.remove(0);
         }
         points.extend(right);
-        let normal_angles = points
+        let normals = points
             .windows(2)
             .map(|w| {
                 let d = w[1] - w[0];
                 // Outward (downward) normal of a left-to-right edge: (dy, -dx).
-                let a = Point::new(d.y, -d.x).atan2();
-                if a <= 0.0 { a + 2.0 * PI } else { a }
+                Point::new(d.y, -d.x) * (1.0 / d.hypot())
             })
             .collect();
+        let bottom = points
+            .iter()
+            .enumerate()
+            .fold((0, f64::INFINITY), |(bi, by), (i, q)| {
+                if q.y < by { (i, q.y) } else { (bi, by) }
+            })
+            .0;
         Outline {
             points,
-            normal_angles,
+            normals,
+            bottom,
         }
     }
 }
 
 impl Outline {
+    /// The x-range (relative) outside which the periphery lies above the
+    /// height `level` (relative): from the last vertex above it on the way
+    /// down to the first above it on the way up. `None` when the whole
+    /// periphery is above `level`.
+    pub fn below(&self, level: f64) -> Option<(f64, f64)> {
+        let p = &self.points;
+        let n = p.len();
+        let bottom = self.bottom;
+        if p[bottom].y > level {
+            return None;
+        }
+        // Falling to the bottom, then rising.
+        let i = p[..bottom].partition_point(|q| q.y > level);
+        let j = bottom + p[bottom..].partition_point(|q| q.y <= level);
+        let lo = p[i.saturating_sub(1)].x;
+        let hi = p[j.min(n - 1)].x;
+        Some((lo, hi))
+    }
+
     /// The x-range of the periphery's part that leads when the dresser moves
     /// by `v` (edges and faces whose outward normal has a non-negative
     /// component along `v`), relative to the corner centre; `None` when no
@@ -217,18 +245,16 @@ impl Outline {
         }
         let len = v.hypot();
         if len > 0.0 {
-            // Leading edges: normal angle within 90° of v's direction. The
-            // normal angles run over [pi, 2 pi] and the leading ones over an
-            // interval of the circle: one run of edges (every run is taken).
-            let theta = v.atan2();
-            let tol = 1e-12;
-            let lead = |a: f64| (a - theta).cos() >= -tol;
+            // Leading edges: normal within 90° of v. The normals turn one way
+            // over half a turn, so the leading ones make one run (every run
+            // is taken all the same).
+            let tol = -1e-12 * len;
+            let m = self.normals.len();
             let mut j = 0;
-            let m = self.normal_angles.len();
             while j < m {
-                if lead(self.normal_angles[j]) {
+                if self.normals[j].dot(v) >= tol {
                     let start = j;
-                    while j < m && lead(self.normal_angles[j]) {
+                    while j < m && self.normals[j].dot(v) >= tol {
                         j += 1;
                     }
                     lo = lo.min(self.points[start].x);
@@ -279,8 +305,9 @@ mod tests {
             for w in p.windows(2) {
                 assert!(w[1].x >= w[0].x);
             }
-            for w in o.normal_angles.windows(2) {
-                assert!(w[1] >= w[0] - 1e-12);
+            for w in o.normals.windows(2) {
+                // Turning counter-clockwise.
+                assert!(w[0].cross(w[1]) >= -1e-12);
             }
             // The bottom is flat at one height.
             let bottom = p.iter().map(|q| q.y).fold(f64::INFINITY, f64::min);

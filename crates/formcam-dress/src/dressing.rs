@@ -1,0 +1,230 @@
+//! The whole dressing: profile, dresser, path, forming, feed and program.
+
+use formcam_nc::{Dialect, Program};
+
+use crate::error::{finite, mm};
+use crate::forming::offset_contour;
+use crate::program::dressing_program;
+use crate::{
+    Contour, DressError, Dresser, DresserSpec, FeedPlan, FeedSpec, Forming, Pass, Point, Profile,
+    WheelSpec, dresser_path, plan_feed, simulate,
+};
+
+/// The wheel's contour before dressing.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Allowance {
+    /// The profile offset outward by this depth, mm.
+    Depth(f64),
+    /// A measured or worn contour (`x, y` in the profile's frame, `x`
+    /// non-decreasing, covering the wheel's width, nowhere below the profile).
+    Contour(Vec<Point>),
+}
+
+/// Everything a dressing needs (mm, rad, mm/min).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DressSpec {
+    /// A name for the program (`PARTNO`, the 840D comment).
+    pub name: String,
+    /// The grinding wheel's profile.
+    pub wheel: WheelSpec,
+    /// The grinding wheel's diameter, mm, for volume rates (`pi D` times the
+    /// section's rate); `None`: rates per the section only.
+    pub wheel_diameter: Option<f64>,
+    /// The dressing wheel.
+    pub dresser: DresserSpec,
+    /// The wheel before dressing.
+    pub allowance: Allowance,
+    /// The step along the path (and the profile's sampling step) `h`, mm.
+    pub step: f64,
+    /// Feed limits and target.
+    pub feed: FeedSpec,
+}
+
+/// A dressing computed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dressing {
+    /// The grinding wheel's profile.
+    pub profile: Profile,
+    /// The dressing wheel.
+    pub dresser: Dresser,
+    /// The grinding wheel's diameter, mm, where given.
+    pub wheel_diameter: Option<f64>,
+    /// The step `h`, mm.
+    pub step: f64,
+    /// The two passes (right half, then left half).
+    pub passes: Vec<Pass>,
+    /// The simulation of forming.
+    pub forming: Forming,
+    /// The feed limits and target used.
+    pub feed_spec: FeedSpec,
+    /// The feed along the path.
+    pub feed: FeedPlan,
+    /// The NC program: axes Z (the wheel's axis) and X (radial), point A.
+    pub program: Program,
+}
+
+impl Dressing {
+    /// The program as text in `dialect`.
+    pub fn nc(&self, dialect: Dialect) -> Result<String, DressError> {
+        let mut s = String::new();
+        formcam_nc::write(&self.program, dialect, &mut s)?;
+        Ok(s)
+    }
+
+    /// The time of the program's feed moves, s.
+    pub fn dressing_time_s(&self) -> f64 {
+        self.program.duration_s().unwrap_or(0.0)
+    }
+
+    /// The number of programmed points (every block's end point).
+    pub fn points(&self) -> usize {
+        self.program.blocks.len()
+    }
+
+    /// The factor from a rate of the section (mm²/min) to a volume rate
+    /// (mm³/min): the wheel's circumference, where its diameter is given.
+    pub fn volume_factor(&self) -> Option<f64> {
+        self.wheel_diameter.map(|d| std::f64::consts::PI * d)
+    }
+
+    /// The height a rounded scallop between two neighbouring positions of the
+    /// dressing corner can leave, plus what cutting the corners into chords
+    /// leaves, mm: `s^2 / 8 (1/r + 1/R1) + c^2 / (8 r)` with `s` the largest
+    /// step between formed points, `r` the smaller corner radius, `R1` the
+    /// convex flank arcs' radius, `c` the chord.
+    pub fn scallop_bound(&self) -> f64 {
+        let r = self.dresser.r_left.min(self.dresser.r_right);
+        let mut s: f64 = 0.0;
+        for pass in &self.passes {
+            for w in pass.points.windows(2) {
+                if let (Some(a), Some(b)) = (w[0].contact, w[1].contact) {
+                    s = s.max(a.distance(b));
+                }
+            }
+        }
+        let c = self.forming.chord;
+        s * s / 8.0 * (1.0 / r + 1.0 / self.profile.spec().r1) + c * c / (8.0 * r)
+    }
+}
+
+/// The smallest step, mm.
+pub const STEP_MIN: f64 = 1e-4;
+
+/// Runs a dressing: checks `spec`, builds the profile, the dresser's path
+/// (two passes), simulates forming from the allowance, plans the feed and
+/// writes the program. Errors are one line naming the field.
+pub fn dress(spec: &DressSpec) -> Result<Dressing, DressError> {
+    let profile = Profile::new(&spec.wheel)?;
+    if let Some(d) = spec.wheel_diameter {
+        let d = finite("wheel.diameter", d, " mm")?;
+        if d <= 0.0 {
+            return Err(DressError::field("wheel.diameter", mm(d), "must be positive"));
+        }
+    }
+    let dresser = Dresser::new(&spec.dresser, &profile)?;
+    let h = finite("process.step", spec.step, " mm")?;
+    let h_max = 0.5 * dresser.r_left.min(dresser.r_right);
+    if !(STEP_MIN..=h_max).contains(&h) {
+        return Err(DressError::field(
+            "process.step",
+            mm(h),
+            format!(
+                "must be in [{}, {}] (half the smaller corner radius)",
+                mm(STEP_MIN),
+                mm(h_max)
+            ),
+        ));
+    }
+    let feed_spec = spec.feed.check()?;
+    let chord = h / 2.0;
+    let initial = match &spec.allowance {
+        Allowance::Depth(depth) => {
+            let depth = finite("process.depth", *depth, " mm")?;
+            if depth <= 0.0 {
+                return Err(DressError::field("process.depth", mm(depth), "must be positive"));
+            }
+            let height = profile.height();
+            if depth >= height {
+                return Err(DressError::field(
+                    "process.depth",
+                    mm(depth),
+                    format!(
+                        "larger than the wheel's profile (its height from the edges to the apex \
+                         is {})",
+                        mm(height)
+                    ),
+                ));
+            }
+            let r2 = profile.min_concave_radius();
+            if depth >= r2 {
+                return Err(DressError::field(
+                    "process.depth",
+                    mm(depth),
+                    format!(
+                        "must be less than the fillet radius wheel.r2 = {}: the allowance's offset \
+                         would lose the fillet",
+                        mm(r2)
+                    ),
+                ));
+            }
+            offset_contour(&profile, depth, chord)
+        }
+        Allowance::Contour(points) => user_contour(&profile, points.clone(), h)?,
+    };
+    let passes = dresser_path(&profile, &dresser, h).to_vec();
+    let forming = simulate(&dresser, &passes, &initial, chord);
+    let feed = plan_feed(&forming.steps, &feed_spec);
+    let program = dressing_program(&spec.name, &profile, &dresser, &passes, &forming, &feed)?;
+    Ok(Dressing {
+        profile,
+        dresser,
+        wheel_diameter: spec.wheel_diameter,
+        step: h,
+        passes,
+        forming,
+        feed_spec,
+        feed,
+        program,
+    })
+}
+
+/// A user's contour, checked and clipped to the wheel's width.
+fn user_contour(profile: &Profile, points: Vec<Point>, h: f64) -> Result<Contour, DressError> {
+    let c = Contour::new(points).map_err(DressError::Contour)?;
+    let half = profile.d.x;
+    let pts = c.points();
+    let (x0, x1) = (pts[0].x, pts[pts.len() - 1].x);
+    let clipped = c.clipped(-half, half).ok_or_else(|| {
+        DressError::Contour(format!(
+            "it spans x from {} to {}; it must cover the wheel's width, -{} to {}",
+            mm(x0),
+            mm(x1),
+            mm(half),
+            mm(half)
+        ))
+    })?;
+    let mut worst = (0.0, 0.0);
+    for q in profile.sample(h) {
+        if let Some((l, r)) = clipped.y_at(q.x) {
+            let below = q.y - l.min(r);
+            if below > worst.0 {
+                worst = (below, q.x);
+            }
+        }
+    }
+    for p in clipped.points() {
+        if let Some(y) = profile.y_at(p.x) {
+            if y - p.y > worst.0 {
+                worst = (y - p.y, p.x);
+            }
+        }
+    }
+    if worst.0 > 1e-9 {
+        return Err(DressError::Contour(format!(
+            "it lies {} below the profile at x = {}: the dresser cannot restore the profile there",
+            mm(worst.0),
+            mm(worst.1)
+        )));
+    }
+    Ok(clipped)
+}

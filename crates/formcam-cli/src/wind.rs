@@ -858,23 +858,16 @@ pub fn run_demo(examples: &Path, out: &Path) -> Result<(), CliError> {
         }
         let text = fs::read_to_string(job)
             .map_err(|e| CliError(format!("{}: cannot read the job file: {e}", job.display())))?;
-        if let Ok(table) = text.parse::<toml::Table>()
-            && crate::correct::is_scenario(&table)
-        {
-            println!(
-                "{}",
-                crate::correct::simulate_text(job, &text, &out.join(&name))?
-            );
-            continue;
-        }
-        if let Ok(table) = text.parse::<toml::Table>()
-            && crate::correct::is_job(&table)
-        {
-            println!(
-                "{}",
-                crate::correct::run_job_text(job, &text, &out.join(&name))?
-            );
-            continue;
+        if let Ok(table) = text.parse::<toml::Table>() {
+            let dir = out.join(&name);
+            if crate::correct::is_scenario(&table) {
+                println!("{}", crate::correct::simulate_text(job, &text, &dir)?);
+                continue;
+            }
+            if crate::correct::is_job(&table) {
+                println!("{}", crate::correct::run_job_text(job, &text, &dir)?);
+                continue;
+            }
         }
         let j = read_job(job)?;
         let stage = if j.machine.is_some() && (j.post.is_some() || j.layer.is_some()) {

@@ -25,6 +25,10 @@ fn run(args: &[&str]) -> Output {
     formcam().args(args).output().unwrap()
 }
 
+fn json(path: impl AsRef<Path>) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
@@ -98,8 +102,7 @@ fn a_constant_error_is_removed_and_other_lines_are_kept() {
     assert!(lines.iter().any(|l| l.starts_with("N60 G1 X")), "{text}");
     assert!(lines.contains(&"N70 G1 X10. ; back"), "{text}");
     // The arc's chords and Z.
-    let r: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let r: serde_json::Value = json(&report);
     for key in [
         "nodes",
         "nodes_corrected",
@@ -140,8 +143,7 @@ fn a_constant_error_is_removed_and_other_lines_are_kept() {
         "bicubic",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let r: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let r: serde_json::Value = json(&report);
     let h = r["history"].as_array().unwrap();
     assert_eq!(h.len(), 2);
     assert_eq!(h[1]["iteration"], 2);
@@ -179,10 +181,7 @@ fn a_node_table_is_corrected_too() {
         text,
         "x,y,z\n10.000,10.000,-0.100\n60.000,50.000,-0.100\n200.000,50.000,0.000\n"
     );
-    let r: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(dir.join("nodes-corrected.report.json")).unwrap(),
-    )
-    .unwrap();
+    let r: serde_json::Value = json(dir.join("nodes-corrected.report.json"));
     assert_eq!(r["nodes_outside"], 1);
     assert_eq!(r["outside_lines"], "3");
 }
@@ -296,8 +295,7 @@ fn the_closed_loop_converges() {
     let out = dir.join("out");
     let o = run(&["correct", "simulate", s(&scenario), "-o", s(&out)]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let r: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let r: serde_json::Value = json(out.join("report.json"));
     let before = r["max_deviation_before_mm"].as_f64().unwrap();
     let after = r["max_deviation_after_mm"].as_f64().unwrap();
     assert!(before > 0.25, "{before}");
@@ -363,9 +361,7 @@ fn the_bundled_correction_example_runs() {
         "ball:6",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let r: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("corrected.report.json")).unwrap())
-            .unwrap();
+    let r: serde_json::Value = json(dir.join("corrected.report.json"));
     // The U-turns beyond the panel's ends are outside and left alone.
     assert_eq!(r["arcs_linearised"], 30);
     assert!(r["nodes_outside"].as_u64().unwrap() > 1000);

@@ -81,6 +81,19 @@ fn slopes(v: &[V3], nu: usize, nv: usize, along_u: bool) -> Vec<V3> {
     out
 }
 
+/// The bilinear form (eq. 1) of corner values `[00, 10, 01, 11]` at
+/// `(s, t)`: value, `d/ds`, `d/dt`, `d2/ds dt`.
+#[inline(always)]
+fn bilinear(c: [V3; 4], s: f64, t: f64) -> (V3, V3, V3, V3) {
+    let [p00, p10, p01, p11] = c;
+    let e0 = sub(p10, p00);
+    let e1 = sub(p11, p01);
+    let f0 = axpy(p00, s, e0);
+    let f1 = axpy(p01, s, e1);
+    let ft = sub(f1, f0);
+    (axpy(f0, t, ft), axpy(e0, t, sub(e1, e0)), ft, sub(e1, e0))
+}
+
 /// Hermite basis `[h0, h1, g0, g1]` and its first and second derivatives.
 #[inline(always)]
 fn hermite(s: f64) -> [[f64; 4]; 3] {
@@ -207,26 +220,22 @@ impl<'g> Surface<'g> {
     /// The bilinear patch of facet `(i, j)` (used for extrapolation too).
     #[inline(always)]
     pub(crate) fn bilinear(&self, i: usize, j: usize, s: f64, t: f64) -> Jet {
-        let g = self.grid;
-        let (p00, p10, p01, p11) = (
-            g.at(i, j),
-            g.at(i + 1, j),
-            g.at(i, j + 1),
-            g.at(i + 1, j + 1),
-        );
-        let e0 = sub(p10, p00);
-        let e1 = sub(p11, p01);
-        let f0 = axpy(p00, s, e0);
-        let f1 = axpy(p01, s, e1);
-        let ft = sub(f1, f0);
+        let (f, fs, ft, fst) = bilinear(self.corners(|i, j| self.grid.at(i, j), i, j), s, t);
         Jet {
-            f: axpy(f0, t, ft),
-            fs: axpy(e0, t, sub(e1, e0)),
+            f,
+            fs,
             ft,
             fss: [0.0; 3],
-            fst: sub(e1, e0),
+            fst,
             ftt: [0.0; 3],
         }
+    }
+
+    /// The values of a grid field at the corners of facet `(i, j)`:
+    /// `[00, 10, 01, 11]`.
+    #[inline(always)]
+    fn corners(&self, at: impl Fn(usize, usize) -> V3, i: usize, j: usize) -> [V3; 4] {
+        [at(i, j), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)]
     }
 
     /// The nominal surface of facet `(i, j)` at `(s, t)`, with derivatives.
@@ -256,21 +265,9 @@ impl<'g> Surface<'g> {
         let g = self.grid;
         match &self.deviation {
             None => {
-                let (d00, d10, d01, d11) = (
-                    g.deviation_at(i, j),
-                    g.deviation_at(i + 1, j),
-                    g.deviation_at(i, j + 1),
-                    g.deviation_at(i + 1, j + 1),
-                );
-                let e0 = sub(d10, d00);
-                let e1 = sub(d11, d01);
-                let f0 = axpy(d00, s, e0);
-                let f1 = axpy(d01, s, e1);
-                (
-                    axpy(f0, t, sub(f1, f0)),
-                    axpy(e0, t, sub(e1, e0)),
-                    sub(f1, f0),
-                )
+                let (f, fs, ft, _) =
+                    bilinear(self.corners(|i, j| g.deviation_at(i, j), i, j), s, t);
+                (f, fs, ft)
             }
             Some(field) => {
                 let c = field.coefficients(g.nu, i, j);

@@ -12,7 +12,7 @@
 //! The true error after each round is also measured without noise on a
 //! dense check grid.
 
-use formcam_nc::{Flavor, NodeKind, ToolpathOptions, read_toolpath};
+use formcam_nc::{Flavor, NodeKind, Toolpath, ToolpathOptions, read_toolpath};
 
 use crate::vec3::{V3, add, axpy, cross, dot, norm, scale, sub, unit};
 use crate::{
@@ -243,20 +243,8 @@ impl Scenario {
     /// The part made from a mould milled by `program`: the part's surface
     /// points on the raster grid (`k * nx + i`, `i` along x).
     fn part(&self, program: &str) -> Result<Vec<V3>, CorrectError> {
-        let tp = read_toolpath(
-            program,
-            &ToolpathOptions {
-                flavor: Flavor::Iso,
-                arc_tolerance_mm: 0.001,
-            },
-        )?;
+        let (_, feed) = feed_nodes(program)?;
         let (nx, ny) = self.raster();
-        let feed: Vec<V3> = tp
-            .nodes
-            .iter()
-            .filter(|n| n.kind != NodeKind::Rapid)
-            .map(|n| n.position)
-            .collect();
         if feed.len() != nx * ny {
             return Err(CorrectError::Scenario(format!(
                 "the program has {} feed nodes, the raster {}",
@@ -392,19 +380,7 @@ impl Scenario {
             smooth(&mut grid, self.noise);
         }
         let corrector = Corrector::new(&grid, options)?;
-        let tp = read_toolpath(
-            program,
-            &ToolpathOptions {
-                flavor: Flavor::Iso,
-                arc_tolerance_mm: 0.001,
-            },
-        )?;
-        let feed: Vec<V3> = tp
-            .nodes
-            .iter()
-            .filter(|n| n.kind != NodeKind::Rapid)
-            .map(|n| n.position)
-            .collect();
+        let (tp, feed) = feed_nodes(program)?;
         let c = corrector.correct(&feed);
         let mut it = c.iter();
         let positions: Vec<V3> = tp
@@ -496,6 +472,24 @@ impl Scenario {
         }
         Ok(rows)
     }
+}
+
+/// Reads a program of the loop: the tool path and its feed nodes.
+fn feed_nodes(program: &str) -> Result<(Toolpath, Vec<V3>), CorrectError> {
+    let tp = read_toolpath(
+        program,
+        &ToolpathOptions {
+            flavor: Flavor::Iso,
+            arc_tolerance_mm: 0.001,
+        },
+    )?;
+    let feed = tp
+        .nodes
+        .iter()
+        .filter(|n| n.kind != NodeKind::Rapid)
+        .map(|n| n.position)
+        .collect();
+    Ok((tp, feed))
 }
 
 /// The slope of a sequence at `k` of `n` (`n >= 2`): central differences,

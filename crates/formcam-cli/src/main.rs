@@ -2,6 +2,7 @@
 //! library crates and writes their outputs atomically.
 
 mod correct;
+mod dress;
 mod machine;
 mod output;
 mod plot;
@@ -46,6 +47,17 @@ enum Command {
         what: Option<CorrectCommand>,
         #[command(flatten)]
         args: correct::CorrectArgs,
+    },
+    /// Wheel dressing: `formcam dress JOB -o OUT` writes the program of a
+    /// dressing wheel forming a gothic-arch grinding wheel (ball-screw nuts),
+    /// with the simulation of forming and feed control.
+    Dress {
+        /// The job file (TOML with [wheel], [dresser], [process]).
+        job: PathBuf,
+        /// Output folder (program.cls, program.mpf, profile.csv, dresser.csv,
+        /// mrr.csv, the contours, profile.svg, mrr.svg, summary.json).
+        #[arg(short, long)]
+        output: PathBuf,
     },
     /// Machine files: the chain as a table, forward kinematics.
     Machine {
@@ -170,6 +182,7 @@ fn main() -> ExitCode {
             }
             None => correct::run(&args).map(|s| println!("{s}")),
         },
+        Command::Dress { job, output } => dress::run(&job, &output).map(|s| println!("{s}")),
         Command::Demo { examples, output } => wind::run_demo(&examples, &output),
     };
     finish(result)

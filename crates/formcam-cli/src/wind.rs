@@ -868,6 +868,10 @@ pub fn run_demo(examples: &Path, out: &Path) -> Result<(), CliError> {
                 println!("{}", crate::correct::run_job_text(job, &text, &dir)?);
                 continue;
             }
+            if crate::dress::is_job(&table) {
+                println!("{}", crate::dress::run_text(job, &text, &dir)?);
+                continue;
+            }
         }
         let j = read_job(job)?;
         let stage = if j.machine.is_some() && (j.post.is_some() || j.layer.is_some()) {

@@ -558,7 +558,8 @@ mod tests {
     #[test]
     fn the_working_plane_opens_the_setup_line() {
         let mut p = Program::new("ZX", vec![AxisSpec::linear("Z"), AxisSpec::linear("X")]);
-        p.blocks.push(Block::linear(vec![1.0, 2.0], Feed::PerMinute(100.0)));
+        p.blocks
+            .push(Block::linear(vec![1.0, 2.0], Feed::PerMinute(100.0)));
         p.plane = Some(crate::Plane::Zx);
         let text = |p: &Program, st: &Style| {
             let mut o = Out::new(Vec::new());

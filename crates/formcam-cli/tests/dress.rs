@@ -1,0 +1,269 @@
+//! `formcam dress` as users meet it: the outputs of the seed's job, checked
+//! against each other, and one-line errors with nothing written for bad jobs.
+
+#![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const EXAMPLE: &str = include_str!("../../../examples/dress-ballscrew-nut.toml");
+
+fn formcam() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_formcam"))
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("formcam-dress-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Writes `text` as a job in a fresh folder and runs `formcam dress` on it.
+fn run_job(name: &str, text: &str) -> (Output, PathBuf) {
+    let dir = scratch(name);
+    let job = dir.join("job.toml");
+    std::fs::write(&job, text).unwrap();
+    let out = dir.join("out");
+    let o = formcam()
+        .arg("dress")
+        .arg(&job)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    (o, out)
+}
+
+fn read(out: &Path, file: &str) -> String {
+    std::fs::read_to_string(out.join(file)).unwrap_or_else(|e| panic!("{file}: {e}"))
+}
+
+/// The rows of a CSV as numbers by column name.
+fn csv(text: &str) -> (Vec<String>, Vec<Vec<String>>) {
+    let mut lines = text.lines();
+    let header = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(String::from)
+        .collect();
+    let rows = lines
+        .map(|l| l.split(',').map(String::from).collect())
+        .collect();
+    (header, rows)
+}
+
+fn col(header: &[String], name: &str) -> usize {
+    header
+        .iter()
+        .position(|h| h == name)
+        .unwrap_or_else(|| panic!("no column {name} in {header:?}"))
+}
+
+#[test]
+fn the_seed_job_writes_consistent_outputs() {
+    let (o, out) = run_job("good", EXAMPLE);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let line = String::from_utf8_lossy(&o.stdout);
+    assert!(line.contains("points") && line.contains("feed control"), "{line}");
+
+    let summary: serde_json::Value = serde_json::from_str(&read(&out, "summary.json")).unwrap();
+    let num = |k: &str| summary[k].as_f64().unwrap_or_else(|| panic!("summary.{k}"));
+    let u = num("mrr_ratio_uncontrolled");
+    let c = num("mrr_ratio_controlled");
+    assert!(u > c && c >= 1.0, "{u} {c}");
+    assert!(num("area_identity_rel_error").abs() < 1e-9);
+    assert!(num("final_deviation_max_mm") <= num("scallop_bound_mm"));
+    assert!(num("final_deviation_min_mm") > -1e-9);
+    let [a, b] = [0, 1].map(|i| summary["contact_angles_deg"][i].as_f64().unwrap());
+    assert!((a - 45.0).abs() < 1e-9 && (b - 135.0).abs() < 1e-9);
+
+    // The CLDATA program: one GOTO per point, a feed within the limits.
+    let cls = read(&out, "program.cls");
+    assert!(cls.starts_with("PARTNO/") && cls.trim_end().ends_with("FINI"));
+    let gotos = cls.lines().filter(|l| l.starts_with("GOTO/")).count();
+    assert_eq!(gotos as u64, summary["points"].as_u64().unwrap());
+    let feeds: Vec<f64> = cls
+        .lines()
+        .filter_map(|l| l.strip_prefix("FEDRAT/"))
+        .map(|l| l.trim_end_matches(",MMPM").parse().unwrap())
+        .collect();
+    assert!(feeds.len() > 10);
+    assert!(feeds.iter().all(|f| (50.0..=300.0).contains(f)), "{feeds:?}");
+
+    // The 840D program: plane G18, G1 blocks with F, as many points.
+    let mpf = read(&out, "program.mpf");
+    assert!(mpf.contains("G18 G90 G94 G71"));
+    assert!(mpf.lines().any(|l| l.contains(" G1 ") && l.contains(" F")));
+    let blocks = mpf
+        .lines()
+        .filter(|l| l.contains(" G0 ") || l.contains(" G1 ") || l.contains("G1 "))
+        .count();
+    assert!(blocks >= gotos - 2, "{blocks} {gotos}");
+
+    // mrr.csv: rate = area per mm x feed; time = path over feed.
+    let (h, rows) = csv(&read(&out, "mrr.csv"));
+    for name in ["z", "x", "area", "mrr", "feed", "cut_angle"] {
+        col(&h, name);
+    }
+    let (ia, il, im, iff) = (
+        col(&h, "area"),
+        col(&h, "length"),
+        col(&h, "mrr"),
+        col(&h, "feed"),
+    );
+    let mut time = 0.0;
+    for r in &rows {
+        let v = |i: usize| r[i].parse::<f64>().unwrap();
+        let (area, len, mrr, feed) = (v(ia), v(il), v(im), v(iff));
+        assert!((area / len * feed - mrr).abs() <= 1e-5 * mrr.max(1.0), "{r:?}");
+        time += len / feed * 60.0;
+    }
+    assert!((time / num("dressing_time_s") - 1.0).abs() < 1e-4);
+    assert_eq!(rows.len() as u64, summary["steps"].as_u64().unwrap());
+
+    // profile.csv and dresser.csv.
+    let (h, rows) = csv(&read(&out, "profile.csv"));
+    assert_eq!(h, ["x", "y"]);
+    let first: f64 = rows[0][0].parse().unwrap();
+    assert!((first + 3.0).abs() < 1e-9);
+    let (h, rows) = csv(&read(&out, "dresser.csv"));
+    assert_eq!(&h[..2], ["z", "x"]);
+    assert_eq!(rows.len() + 4, gotos, "path points and the four rapid moves");
+
+    for svg in ["profile.svg", "mrr.svg"] {
+        assert!(read(&out, svg).contains("<svg"), "{svg}");
+    }
+    let names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into())
+        .collect();
+    assert!(names.iter().all(|n| !n.ends_with(".tmp")), "{names:?}");
+}
+
+#[test]
+fn bad_jobs_stop_with_one_line_and_write_nothing() {
+    let cases = [
+        ("r2 = 0.296", "r2 = 2.0", "wheel.r2 = 2 mm: the fillet does not fit"),
+        (
+            "contact_angle_deg = 45.0",
+            "contact_angle_deg = 90.0",
+            "wheel.contact_angle_deg = 90°",
+        ),
+        (
+            "contact_angle_deg = 45.0",
+            "contact_angle_deg = -5.0",
+            "wheel.contact_angle_deg = -5°",
+        ),
+        ("r1 = 1.937", "r1 = 1.85", "wheel.r1 = 1.85 mm"),
+        ("step = 0.01", "step = 0.0", "process.step = 0 mm"),
+        (
+            "depth = 0.05",
+            "depth = 2.5",
+            "process.depth = 2.5 mm: larger than the wheel",
+        ),
+        ("width = 6.0", "width = nan", "wheel.width = NaN mm"),
+        ("feed_max = 300.0", "feed_max = 300.0\nfeed_rate = 3", "unknown field `feed_rate`"),
+        (
+            "corner_radius_left = 0.258",
+            "corner_radius_left = 0.4",
+            "dresser.corner_radius_left = 0.4 mm",
+        ),
+    ];
+    for (from, to, expect) in cases {
+        assert!(EXAMPLE.contains(from), "{from}");
+        let (o, out) = run_job("bad", &EXAMPLE.replacen(from, to, 1));
+        assert_eq!(o.status.code(), Some(2), "{to}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(expect), "{to}: {err}");
+        assert!(err.contains("job.toml"), "{err}");
+        assert!(!out.join("program.cls").exists() && !out.join("program.mpf").exists());
+        assert!(!out.exists() || std::fs::read_dir(&out).unwrap().next().is_none());
+    }
+}
+
+#[test]
+fn an_unwritable_output_leaves_no_program() {
+    let dir = scratch("unwritable");
+    let job = dir.join("job.toml");
+    std::fs::write(&job, EXAMPLE).unwrap();
+    // The output folder's place is taken by a file.
+    let out = dir.join("out");
+    std::fs::write(&out, "not a folder").unwrap();
+    let o = formcam()
+        .arg("dress")
+        .arg(&job)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(String::from_utf8_lossy(&o.stderr).lines().count(), 1);
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "not a folder");
+}
+
+#[test]
+fn a_worn_contour_from_a_file() {
+    let dir = scratch("worn");
+    // A wheel worn unevenly: 0.03 mm allowance above the profile's bounding
+    // line plus a bump, read from CSV beside the job.
+    let mut csv = String::from("x,y\n");
+    for i in 0..=600 {
+        let x = -3.0 + 0.01 * i as f64;
+        // Above the whole profile (apex at 1.875 mm): a flat-topped wheel.
+        let y = 1.95 + 0.02 * (3.0 * x).cos();
+        csv.push_str(&format!("{x},{y}\n"));
+    }
+    std::fs::write(dir.join("worn.csv"), csv).unwrap();
+    let job = EXAMPLE.replace("depth = 0.05", "initial_contour = \"worn.csv\"");
+    std::fs::write(dir.join("job.toml"), job).unwrap();
+    let out = dir.join("out");
+    let o = formcam()
+        .arg("dress")
+        .arg(dir.join("job.toml"))
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary: serde_json::Value = serde_json::from_str(&read(&out, "summary.json")).unwrap();
+    assert!(summary["area_identity_rel_error"].as_f64().unwrap().abs() < 1e-9);
+    assert!(
+        summary["final_deviation_max_mm"].as_f64().unwrap()
+            <= summary["scallop_bound_mm"].as_f64().unwrap()
+    );
+    // A contour below the profile is refused.
+    std::fs::write(dir.join("worn.csv"), "x,y\n-3,0\n3,0\n").unwrap();
+    let o = formcam()
+        .arg("dress")
+        .arg(dir.join("job.toml"))
+        .arg("-o")
+        .arg(dir.join("out2"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(err.contains("process.initial_contour: it lies"), "{err}");
+}
+
+#[test]
+fn the_demo_runs_the_dressing_example() {
+    let dir = scratch("demo");
+    let examples = dir.join("examples");
+    std::fs::create_dir_all(&examples).unwrap();
+    std::fs::write(examples.join("dress-ballscrew-nut.toml"), EXAMPLE).unwrap();
+    let out = dir.join("out");
+    let o = formcam()
+        .arg("demo")
+        .arg("--examples")
+        .arg(&examples)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(out.join("dress-ballscrew-nut/program.cls").exists());
+    assert!(out.join("dress-ballscrew-nut/summary.json").exists());
+}

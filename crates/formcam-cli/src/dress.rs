@@ -291,7 +291,10 @@ fn profile_svg(title: &str, d: &Dressing) -> Result<Vec<u8>, CliError> {
         let colour = if pass.side == Side::Right { BLUE } else { RED };
         series.push((
             format!("pass {}: corner centre (r = {})", i + 1, pass.radius),
-            pass.points.iter().map(|p| (p.centre.x, p.centre.y)).collect(),
+            pass.points
+                .iter()
+                .map(|p| (p.centre.x, p.centre.y))
+                .collect(),
             colour,
         ));
         series.push((
@@ -436,8 +439,8 @@ fn mrr_svg(title: &str, d: &Dressing) -> Result<Vec<u8>, CliError> {
     ];
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (900, 300 * panels.len() as u32))
-            .into_drawing_area();
+        let root =
+            SVGBackend::with_string(&mut svg, (900, 300 * panels.len() as u32)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
         let root = root
             .titled(

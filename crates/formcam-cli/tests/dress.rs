@@ -42,12 +42,7 @@ fn read(out: &Path, file: &str) -> String {
 /// The rows of a CSV as numbers by column name.
 fn csv(text: &str) -> (Vec<String>, Vec<Vec<String>>) {
     let mut lines = text.lines();
-    let header = lines
-        .next()
-        .unwrap()
-        .split(',')
-        .map(String::from)
-        .collect();
+    let header = lines.next().unwrap().split(',').map(String::from).collect();
     let rows = lines
         .map(|l| l.split(',').map(String::from).collect())
         .collect();
@@ -66,7 +61,10 @@ fn the_seed_job_writes_consistent_outputs() {
     let (o, out) = run_job("good", EXAMPLE);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let line = String::from_utf8_lossy(&o.stdout);
-    assert!(line.contains("points") && line.contains("feed control"), "{line}");
+    assert!(
+        line.contains("points") && line.contains("feed control"),
+        "{line}"
+    );
 
     let summary: serde_json::Value = serde_json::from_str(&read(&out, "summary.json")).unwrap();
     let num = |k: &str| summary[k].as_f64().unwrap_or_else(|| panic!("summary.{k}"));
@@ -90,7 +88,10 @@ fn the_seed_job_writes_consistent_outputs() {
         .map(|l| l.trim_end_matches(",MMPM").parse().unwrap())
         .collect();
     assert!(feeds.len() > 10);
-    assert!(feeds.iter().all(|f| (50.0..=300.0).contains(f)), "{feeds:?}");
+    assert!(
+        feeds.iter().all(|f| (50.0..=300.0).contains(f)),
+        "{feeds:?}"
+    );
 
     // The 840D program: plane G18, G1 blocks with F, as many points.
     let mpf = read(&out, "program.mpf");
@@ -117,7 +118,10 @@ fn the_seed_job_writes_consistent_outputs() {
     for r in &rows {
         let v = |i: usize| r[i].parse::<f64>().unwrap();
         let (area, len, mrr, feed) = (v(ia), v(il), v(im), v(iff));
-        assert!((area / len * feed - mrr).abs() <= 1e-5 * mrr.max(1.0), "{r:?}");
+        assert!(
+            (area / len * feed - mrr).abs() <= 1e-5 * mrr.max(1.0),
+            "{r:?}"
+        );
         time += len / feed * 60.0;
     }
     assert!((time / num("dressing_time_s") - 1.0).abs() < 1e-4);
@@ -130,7 +134,11 @@ fn the_seed_job_writes_consistent_outputs() {
     assert!((first + 3.0).abs() < 1e-9);
     let (h, rows) = csv(&read(&out, "dresser.csv"));
     assert_eq!(&h[..2], ["z", "x"]);
-    assert_eq!(rows.len() + 4, gotos, "path points and the four rapid moves");
+    assert_eq!(
+        rows.len() + 4,
+        gotos,
+        "path points and the four rapid moves"
+    );
 
     for svg in ["profile.svg", "mrr.svg"] {
         assert!(read(&out, svg).contains("<svg"), "{svg}");
@@ -145,7 +153,11 @@ fn the_seed_job_writes_consistent_outputs() {
 #[test]
 fn bad_jobs_stop_with_one_line_and_write_nothing() {
     let cases = [
-        ("r2 = 0.296", "r2 = 2.0", "wheel.r2 = 2 mm: the fillet does not fit"),
+        (
+            "r2 = 0.296",
+            "r2 = 2.0",
+            "wheel.r2 = 2 mm: the fillet does not fit",
+        ),
         (
             "contact_angle_deg = 45.0",
             "contact_angle_deg = 90.0",
@@ -164,7 +176,11 @@ fn bad_jobs_stop_with_one_line_and_write_nothing() {
             "process.depth = 2.5 mm: larger than the wheel",
         ),
         ("width = 6.0", "width = nan", "wheel.width = NaN mm"),
-        ("feed_max = 300.0", "feed_max = 300.0\nfeed_rate = 3", "unknown field `feed_rate`"),
+        (
+            "feed_max = 300.0",
+            "feed_max = 300.0\nfeed_rate = 3",
+            "unknown field `feed_rate`",
+        ),
         (
             "corner_radius_left = 0.258",
             "corner_radius_left = 0.4",

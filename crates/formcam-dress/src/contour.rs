@@ -160,7 +160,7 @@ pub(crate) fn cut(
     } else {
         xb.min(g[g.len() - 1].x)
     };
-    if !(xa <= xb) {
+    if xa > xb || xa.is_nan() || xb.is_nan() {
         return res;
     }
     // Breakpoints: the range's ends and every vertex of either polyline
@@ -356,7 +356,11 @@ mod tests {
     #[test]
     fn a_v_cut_out_of_a_flat_wheel() {
         let g = Contour::new(vec![Point::new(-2.0, 1.0), Point::new(2.0, 1.0)]).unwrap();
-        let d = tool(&[Point::new(-1.0, 1.5), Point::new(0.0, 0.5), Point::new(1.0, 1.5)]);
+        let d = tool(&[
+            Point::new(-1.0, 1.5),
+            Point::new(0.0, 0.5),
+            Point::new(1.0, 1.5),
+        ]);
         let mut out = Vec::new();
         let r = cut(g.points(), false, false, &d, -2.0, 2.0, &mut out);
         // A triangle of base 1 and height 0.5.
@@ -437,6 +441,9 @@ mod tests {
         assert!(Contour::new(end.points().to_vec()).is_ok());
         let between = area_between(&start, &end);
         assert!(total > 0.1);
-        assert!(((total - between) / between).abs() < 1e-12, "{total} {between}");
+        assert!(
+            ((total - between) / between).abs() < 1e-12,
+            "{total} {between}"
+        );
     }
 }

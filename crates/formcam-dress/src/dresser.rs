@@ -85,7 +85,11 @@ impl Dresser {
     pub fn new(spec: &DresserSpec, profile: &Profile) -> Result<Dresser, DressError> {
         let b = finite("dresser.width", spec.width, " mm")?;
         let rl = finite("dresser.corner_radius_left", spec.corner_radius_left, " mm")?;
-        let rr = finite("dresser.corner_radius_right", spec.corner_radius_right, " mm")?;
+        let rr = finite(
+            "dresser.corner_radius_right",
+            spec.corner_radius_right,
+            " mm",
+        )?;
         let concave = profile.min_concave_radius();
         for (field, r) in [
             ("dresser.corner_radius_left", rl),
@@ -106,7 +110,7 @@ impl Dresser {
                 ));
             }
         }
-        if !(b >= rl + rr) {
+        if b < rl + rr {
             return Err(DressError::field(
                 "dresser.width",
                 mm(b),
@@ -147,10 +151,7 @@ impl Dresser {
     pub fn reference(&self, side: Side, centre: Point) -> Point {
         match side {
             // The lower-left corner: the left face at centre.x - r.
-            Side::Right => Point::new(
-                centre.x - self.r_right + self.yo,
-                centre.y - self.r_right,
-            ),
+            Side::Right => Point::new(centre.x - self.r_right + self.yo, centre.y - self.r_right),
             // The lower-right corner: the right face at centre.x + r.
             Side::Left => Point::new(
                 centre.x + self.r_left - self.width + self.yo,
@@ -326,7 +327,10 @@ mod tests {
         let o = d.outline(Side::Right, 0.005);
         // Moving left and up (climbing the right half): the lower-left corner leads.
         let (lo, hi) = o.leading_range(Point::new(-1.0, 0.2)).unwrap();
-        assert!((lo + 0.279).abs() < 1e-12 && hi < 0.0 && hi > -0.279, "{lo} {hi}");
+        assert!(
+            (lo + 0.279).abs() < 1e-12 && hi < 0.0 && hi > -0.279,
+            "{lo} {hi}"
+        );
         // Moving straight up: nothing leads.
         assert!(o.leading_range(Point::new(0.0, 1.0)).is_none());
         // Moving down: the whole periphery leads.
@@ -339,12 +343,25 @@ mod tests {
         let mut s = seed();
         s.corner_radius_right = 0.3;
         let e = Dresser::new(&s, &profile()).unwrap_err().to_string();
-        assert!(e.starts_with("dresser.corner_radius_right = 0.3 mm: larger than"), "{e}");
+        assert!(
+            e.starts_with("dresser.corner_radius_right = 0.3 mm: larger than"),
+            "{e}"
+        );
         let mut s = seed();
         s.width = 0.5;
-        assert!(Dresser::new(&s, &profile()).unwrap_err().to_string().starts_with("dresser.width"));
+        assert!(
+            Dresser::new(&s, &profile())
+                .unwrap_err()
+                .to_string()
+                .starts_with("dresser.width")
+        );
         let mut s = seed();
         s.yo = Some(3.0);
-        assert!(Dresser::new(&s, &profile()).unwrap_err().to_string().starts_with("dresser.yo"));
+        assert!(
+            Dresser::new(&s, &profile())
+                .unwrap_err()
+                .to_string()
+                .starts_with("dresser.yo")
+        );
     }
 }

@@ -118,7 +118,11 @@ pub fn dress(spec: &DressSpec) -> Result<Dressing, DressError> {
     if let Some(d) = spec.wheel_diameter {
         let d = finite("wheel.diameter", d, " mm")?;
         if d <= 0.0 {
-            return Err(DressError::field("wheel.diameter", mm(d), "must be positive"));
+            return Err(DressError::field(
+                "wheel.diameter",
+                mm(d),
+                "must be positive",
+            ));
         }
     }
     let dresser = Dresser::new(&spec.dresser, &profile)?;
@@ -141,7 +145,11 @@ pub fn dress(spec: &DressSpec) -> Result<Dressing, DressError> {
         Allowance::Depth(depth) => {
             let depth = finite("process.depth", *depth, " mm")?;
             if depth <= 0.0 {
-                return Err(DressError::field("process.depth", mm(depth), "must be positive"));
+                return Err(DressError::field(
+                    "process.depth",
+                    mm(depth),
+                    "must be positive",
+                ));
             }
             let height = profile.height();
             if depth >= height {
@@ -213,10 +221,10 @@ fn user_contour(profile: &Profile, points: Vec<Point>, h: f64) -> Result<Contour
         }
     }
     for p in clipped.points() {
-        if let Some(y) = profile.y_at(p.x) {
-            if y - p.y > worst.0 {
-                worst = (y - p.y, p.x);
-            }
+        if let Some(y) = profile.y_at(p.x)
+            && y - p.y > worst.0
+        {
+            worst = (y - p.y, p.x);
         }
     }
     if worst.0 > 1e-9 {

@@ -45,7 +45,11 @@ pub enum DressError {
 
 impl DressError {
     /// A field error: `field = value: reason`.
-    pub fn field(field: impl Into<String>, value: impl Into<String>, reason: impl Into<String>) -> Self {
+    pub fn field(
+        field: impl Into<String>,
+        value: impl Into<String>,
+        reason: impl Into<String>,
+    ) -> Self {
         Self::Field {
             field: field.into(),
             value: value.into(),

@@ -184,7 +184,11 @@ pub fn plan_feed(steps: &[Step], spec: &FeedSpec) -> FeedPlan {
     let mrr: Vec<f64> = a.iter().zip(&feed).map(|(ak, f)| ak * f).collect();
     let length: f64 = steps.iter().map(|s| s.length).sum();
     let time_min: f64 = steps.iter().zip(&feed).map(|(s, f)| s.length / f).sum();
-    let feed_uncontrolled = if time_min > 0.0 { length / time_min } else { hi };
+    let feed_uncontrolled = if time_min > 0.0 {
+        length / time_min
+    } else {
+        hi
+    };
     let mrr_uncontrolled: Vec<f64> = a.iter().map(|ak| ak * feed_uncontrolled).collect();
     let ratio = |rates: &[f64], steady: bool| {
         let mut rmin = f64::INFINITY;
@@ -250,7 +254,10 @@ mod tests {
             .map(|i| step(0, 0.0002 + 0.0008 * (i % 11) as f64 / 10.0, true))
             .collect();
         let p = plan_feed(&steps, &spec());
-        let amin = steps.iter().map(Step::area_per_mm).fold(f64::INFINITY, f64::min);
+        let amin = steps
+            .iter()
+            .map(Step::area_per_mm)
+            .fold(f64::INFINITY, f64::min);
         assert!((p.target - 300.0 * amin).abs() < 1e-9);
         for (k, m) in p.mrr.iter().enumerate() {
             assert!((m / p.target - 1.0).abs() < 1e-12, "{k} {m}");
@@ -276,7 +283,9 @@ mod tests {
 
     #[test]
     fn smoothing_only_lowers_feeds_and_keeps_the_limit() {
-        let areas = [0.0005, 0.0005, 0.0005, 0.008, 0.0005, 0.0005, 0.0005, 0.0005];
+        let areas = [
+            0.0005, 0.0005, 0.0005, 0.008, 0.0005, 0.0005, 0.0005, 0.0005,
+        ];
         let mut steps: Vec<Step> = areas.iter().map(|&a| step(0, a, true)).collect();
         steps[7].pass = 1;
         let mut s = spec();
@@ -301,12 +310,27 @@ mod tests {
     fn bad_limits_name_the_field() {
         let mut s = spec();
         s.feed_max = 10.0;
-        assert!(s.check().unwrap_err().to_string().starts_with("process.feed_max = 10 mm/min"));
+        assert!(
+            s.check()
+                .unwrap_err()
+                .to_string()
+                .starts_with("process.feed_max = 10 mm/min")
+        );
         let mut s = spec();
         s.feed_min = f64::NAN;
-        assert!(s.check().unwrap_err().to_string().starts_with("process.feed_min = NaN"));
+        assert!(
+            s.check()
+                .unwrap_err()
+                .to_string()
+                .starts_with("process.feed_min = NaN")
+        );
         let mut s = spec();
         s.target_mrr = Some(-1.0);
-        assert!(s.check().unwrap_err().to_string().starts_with("process.target_mrr"));
+        assert!(
+            s.check()
+                .unwrap_err()
+                .to_string()
+                .starts_with("process.target_mrr")
+        );
     }
 }

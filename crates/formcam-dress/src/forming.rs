@@ -293,8 +293,8 @@ fn mark_steady(steps: &mut [Step], passes: usize) {
                 let (x0, x1) = (a.x.min(b.x), a.x.max(b.x));
                 lo = lo.min(x0);
                 hi = hi.max(x1);
-                s.steady = s.stage.on_profile()
-                    && touched.iter().all(|&(t0, t1)| x1 < t0 || x0 > t1);
+                s.steady =
+                    s.stage.on_profile() && touched.iter().all(|&(t0, t1)| x1 < t0 || x0 > t1);
             }
         }
         touched.push((lo, hi));
@@ -356,9 +356,15 @@ mod tests {
         let start = offset_contour(&p, 0.05, chord);
         let f = simulate(&d, &passes, &start, chord);
         let (removed, between) = (f.removed(), f.area_between());
-        assert!(((removed - between) / between).abs() < 1e-9, "{removed} {between}");
+        assert!(
+            ((removed - between) / between).abs() < 1e-9,
+            "{removed} {between}"
+        );
         // Roughly the allowance times the profile's length.
-        assert!((between / (0.05 * p.length()) - 1.0).abs() < 0.1, "{between}");
+        assert!(
+            (between / (0.05 * p.length()) - 1.0).abs() < 0.1,
+            "{between}"
+        );
         let (lo, hi) = f.deviation(&p, h);
         assert!(lo > -1e-9, "{lo}");
         assert!(hi < 1e-4, "{hi}");

@@ -216,7 +216,10 @@ feed_max = 300.0
         let e = DressJob::from_toml(&SEED.replace("r2 = 0.296", "r2 = 0.296\nr3 = 1.0"))
             .unwrap_err()
             .to_string();
-        assert!(e.contains("unknown field `r3`") && e.starts_with("line 7"), "{e}");
+        assert!(
+            e.contains("unknown field `r3`") && e.starts_with("line 7"),
+            "{e}"
+        );
         let e = DressJob::from_toml(&SEED.replace("step = 0.01\n", ""))
             .unwrap_err()
             .to_string();

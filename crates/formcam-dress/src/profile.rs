@@ -128,7 +128,11 @@ impl Profile {
         let tilt = finite("wheel.flank_tilt_deg", s.flank_tilt.to_degrees(), "°")?.to_radians();
         let a2 = finite("wheel.arc_angle_deg", s.arc_angle.to_degrees(), "°")?.to_radians();
         if rs <= 0.0 {
-            return Err(DressError::field("wheel.ball_radius", mm(rs), "must be positive"));
+            return Err(DressError::field(
+                "wheel.ball_radius",
+                mm(rs),
+                "must be positive",
+            ));
         }
         if !(a > 0.0 && a < PI / 2.0) {
             return Err(DressError::field(
@@ -152,7 +156,11 @@ impl Profile {
             return Err(DressError::field("wheel.r2", mm(r2), "must be positive"));
         }
         if width <= 0.0 {
-            return Err(DressError::field("wheel.width", mm(width), "must be positive"));
+            return Err(DressError::field(
+                "wheel.width",
+                mm(width),
+                "must be positive",
+            ));
         }
         if !(a2 > 0.0 && a2 < a) {
             return Err(DressError::field(
@@ -269,7 +277,7 @@ impl Profile {
     /// The profile's height `y` at `x` (`|x| <= B/2`), exact; `None` outside.
     pub fn y_at(&self, x: f64) -> Option<f64> {
         let ax = x.abs();
-        if !(ax <= self.d.x) {
+        if ax > self.d.x || ax.is_nan() {
             return None;
         }
         let s = &self.spec;
@@ -451,7 +459,10 @@ mod tests {
             f(&mut s);
             Profile::new(&s).unwrap_err().to_string()
         };
-        assert!(err(|s| s.r2 = 2.0).starts_with("wheel.r2 = 2 mm: the fillet does not fit the width 6 mm"));
+        assert!(
+            err(|s| s.r2 = 2.0)
+                .starts_with("wheel.r2 = 2 mm: the fillet does not fit the width 6 mm")
+        );
         assert!(err(|s| s.contact_angle = PI / 2.0).starts_with("wheel.contact_angle_deg = 90°"));
         assert!(err(|s| s.contact_angle = 0.0).starts_with("wheel.contact_angle_deg = 0°"));
         assert!(err(|s| s.r1 = 1.85).starts_with("wheel.r1 = 1.85 mm"));

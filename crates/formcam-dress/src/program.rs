@@ -70,12 +70,13 @@ pub(crate) fn dressing_program(
             continue;
         };
         let a = first.reference;
-        p.blocks.push(Block::rapid(vec![a.x, safe]).with_comment(format!(
-            "pass {}: the {} half, corner radius {}",
-            pi + 1,
-            pass.side.name(),
-            num(dresser.radius(pass.side))
-        )));
+        p.blocks
+            .push(Block::rapid(vec![a.x, safe]).with_comment(format!(
+                "pass {}: the {} half, corner radius {}",
+                pi + 1,
+                pass.side.name(),
+                num(dresser.radius(pass.side))
+            )));
         p.blocks.push(Block::rapid(vec![a.x, a.y]));
         for q in &pass.points[1..] {
             // One feed per step, in the order of the passes' points.

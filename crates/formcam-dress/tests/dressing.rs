@@ -61,7 +61,10 @@ impl Grid {
                 }
                 // The fillet: the lower half of a circle about O2.
                 let r = s.r2 - depth;
-                let (fa, fb) = (std::f64::consts::PI + arc, 1.5 * std::f64::consts::PI - tilt);
+                let (fa, fb) = (
+                    std::f64::consts::PI + arc,
+                    1.5 * std::f64::consts::PI - tilt,
+                );
                 let (xa, xb) = (p.o2.x + r * fa.cos(), p.o2.x + r * fb.cos());
                 if x >= xa && x <= xb {
                     let t = (r * r - (x - p.o2.x).powi(2)).max(0.0);
@@ -157,10 +160,11 @@ fn profiles_join_tangent_and_touch_the_ball_at_the_contact_angle() {
         let p = formcam_dress::Profile::new(&w).unwrap();
         let j = p.joints();
         assert!(j.gap < 1e-9 && j.angle < 1e-9, "{w:?}: {j:?}");
-        for (c, angle) in p.contacts().iter().zip([
-            w.contact_angle,
-            std::f64::consts::PI - w.contact_angle,
-        ]) {
+        for (c, angle) in p
+            .contacts()
+            .iter()
+            .zip([w.contact_angle, std::f64::consts::PI - w.contact_angle])
+        {
             assert!(c.gap.abs() < 1e-9, "{c:?}");
             assert!((c.angle - angle).abs() < 1e-9, "{c:?}");
         }
@@ -210,8 +214,14 @@ fn the_final_contour_is_the_profile_within_the_scallop() {
         let d = dress(&job(|j| j.process.step = step)).unwrap();
         let (lo, hi) = d.forming.deviation(&d.profile, d.step);
         let bound = d.scallop_bound();
-        assert!(lo > -1e-9, "step {step}: the wheel is cut below its profile by {lo}");
-        assert!(hi <= bound, "step {step}: {hi} above the profile, bound {bound}");
+        assert!(
+            lo > -1e-9,
+            "step {step}: the wheel is cut below its profile by {lo}"
+        );
+        assert!(
+            hi <= bound,
+            "step {step}: {hi} above the profile, bound {bound}"
+        );
         // The bound is no loose one: the scallops come close to it.
         assert!(hi > 0.3 * bound, "step {step}: {hi} vs {bound}");
     }
@@ -354,17 +364,39 @@ fn dressing_time_is_the_path_over_the_feeds() {
 
 #[test]
 fn bad_input_is_one_line_naming_the_field() {
-    let cases: Vec<(Box<dyn Fn(&mut DressJob)>, &str)> = vec![
-        (Box::new(|j| j.wheel.r2 = 2.0), "wheel.r2 = 2 mm: the fillet does not fit"),
-        (Box::new(|j| j.wheel.contact_angle_deg = 90.0), "wheel.contact_angle_deg = 90°"),
-        (Box::new(|j| j.wheel.contact_angle_deg = 0.0), "wheel.contact_angle_deg = 0°"),
+    type Edit = Box<dyn Fn(&mut DressJob)>;
+    let cases: Vec<(Edit, &str)> = vec![
+        (
+            Box::new(|j| j.wheel.r2 = 2.0),
+            "wheel.r2 = 2 mm: the fillet does not fit",
+        ),
+        (
+            Box::new(|j| j.wheel.contact_angle_deg = 90.0),
+            "wheel.contact_angle_deg = 90°",
+        ),
+        (
+            Box::new(|j| j.wheel.contact_angle_deg = 0.0),
+            "wheel.contact_angle_deg = 0°",
+        ),
         (Box::new(|j| j.wheel.r1 = 1.85), "wheel.r1 = 1.85 mm"),
         (Box::new(|j| j.wheel.r1 = 1.2), "wheel.r1 = 1.2 mm"),
         (Box::new(|j| j.process.step = 0.0), "process.step = 0 mm"),
-        (Box::new(|j| j.process.depth = Some(2.0)), "process.depth = 2 mm: larger than the wheel"),
-        (Box::new(|j| j.process.depth = Some(0.3)), "process.depth = 0.3 mm"),
-        (Box::new(|j| j.wheel.ball_radius = f64::NAN), "wheel.ball_radius = NaN"),
-        (Box::new(|j| j.process.feed_max = f64::NAN), "process.feed_max = NaN"),
+        (
+            Box::new(|j| j.process.depth = Some(2.0)),
+            "process.depth = 2 mm: larger than the wheel",
+        ),
+        (
+            Box::new(|j| j.process.depth = Some(0.3)),
+            "process.depth = 0.3 mm",
+        ),
+        (
+            Box::new(|j| j.wheel.ball_radius = f64::NAN),
+            "wheel.ball_radius = NaN",
+        ),
+        (
+            Box::new(|j| j.process.feed_max = f64::NAN),
+            "process.feed_max = NaN",
+        ),
         (
             Box::new(|j| j.dresser.corner_radius_left = 0.3),
             "dresser.corner_radius_left = 0.3 mm: larger than",
@@ -373,7 +405,11 @@ fn bad_input_is_one_line_naming_the_field() {
     for (edit, start) in cases {
         let mut j = DressJob::from_toml(EXAMPLE).unwrap();
         edit(&mut j);
-        let e = j.spec(None).and_then(|s| dress(&s)).unwrap_err().to_string();
+        let e = j
+            .spec(None)
+            .and_then(|s| dress(&s))
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with(start), "{e:?} should start with {start:?}");
         assert!(!e.contains('\n'), "{e:?}");
     }
@@ -382,4 +418,3 @@ fn bad_input_is_one_line_naming_the_field() {
         .to_string();
     assert!(e.contains("unknown field `speed`"), "{e}");
 }
-

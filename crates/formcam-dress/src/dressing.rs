@@ -115,6 +115,15 @@ pub const STEP_MIN: f64 = 1e-4;
 /// writes the program. Errors are one line naming the field.
 pub fn dress(spec: &DressSpec) -> Result<Dressing, DressError> {
     let profile = Profile::new(&spec.wheel)?;
+    let tilt = profile.spec().flank_tilt;
+    if tilt < 0.0 {
+        return Err(DressError::field(
+            "wheel.flank_tilt_deg",
+            crate::error::deg(tilt.to_degrees()),
+            "flanks rising toward the wheel's edges face away from the corner that dresses them \
+             (and the dresser's periphery would cut into them): dressing needs a tilt of 0° or more",
+        ));
+    }
     if let Some(d) = spec.wheel_diameter {
         let d = finite("wheel.diameter", d, " mm")?;
         if d <= 0.0 {
@@ -181,6 +190,7 @@ pub fn dress(spec: &DressSpec) -> Result<Dressing, DressError> {
     };
     let passes = dresser_path(&profile, &dresser, h).to_vec();
     let forming = simulate(&dresser, &passes, &initial, chord);
+    check_gouge(&profile, &dresser, &forming)?;
     let feed = plan_feed(&forming.steps, &feed_spec);
     let program = dressing_program(&spec.name, &profile, &dresser, &passes, &forming, &feed)?;
     Ok(Dressing {
@@ -235,4 +245,31 @@ fn user_contour(profile: &Profile, points: Vec<Point>, h: f64) -> Result<Contour
         )));
     }
     Ok(clipped)
+}
+
+/// Refuses a dressing whose dresser cuts into the profile somewhere (its
+/// periphery or other corner meeting a part of the profile that rises away
+/// from the corner being used, such as flanks rising toward the edges).
+fn check_gouge(profile: &Profile, dresser: &Dresser, forming: &Forming) -> Result<(), DressError> {
+    let mut worst = (0.0, 0.0);
+    for p in forming.final_contour().points() {
+        if let Some(y) = profile.y_at(p.x)
+            && y - p.y > worst.0
+        {
+            worst = (y - p.y, p.x);
+        }
+    }
+    if worst.0 > 1e-9 {
+        return Err(DressError::field(
+            "dresser.width",
+            mm(dresser.width),
+            format!(
+                "the dresser cuts into the profile, {} deep at Z = {}: its periphery meets the \
+                 profile away from the corner that dresses it",
+                mm(worst.0),
+                mm(worst.1)
+            ),
+        ));
+    }
+    Ok(())
 }

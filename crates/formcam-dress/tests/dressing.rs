@@ -398,6 +398,10 @@ fn bad_input_is_one_line_naming_the_field() {
             "process.feed_max = NaN",
         ),
         (
+            Box::new(|j| j.wheel.flank_tilt_deg = -15.0),
+            "wheel.flank_tilt_deg = -15°: flanks rising",
+        ),
+        (
             Box::new(|j| j.dresser.corner_radius_left = 0.3),
             "dresser.corner_radius_left = 0.3 mm: larger than",
         ),

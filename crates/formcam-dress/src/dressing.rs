@@ -87,23 +87,44 @@ impl Dressing {
         self.wheel_diameter.map(|d| std::f64::consts::PI * d)
     }
 
-    /// The height a rounded scallop between two neighbouring positions of the
-    /// dressing corner can leave, plus what cutting the corners into chords
-    /// leaves, mm: `s^2 / 8 (1/r + 1/R1) + c^2 / (8 r)` with `s` the largest
-    /// step between formed points, `r` the smaller corner radius, `R1` the
-    /// convex flank arcs' radius, `c` the chord.
+    /// How far above the profile the dressed contour may lie, mm: the
+    /// highest cusp between the circles of the dressing corner at two
+    /// neighbouring path points (their intersection on the profile's side,
+    /// measured to the profile), plus what cutting the corners into chords
+    /// leaves (`c^2 / (8 r)`, `c` the chord, `r` the smaller corner radius).
     pub fn scallop_bound(&self) -> f64 {
-        let r = self.dresser.r_left.min(self.dresser.r_right);
-        let mut s: f64 = 0.0;
+        let pieces = self.profile.pieces();
+        let mut cusp: f64 = 0.0;
         for pass in &self.passes {
+            let r = pass.radius;
             for w in pass.points.windows(2) {
-                if let (Some(a), Some(b)) = (w[0].contact, w[1].contact) {
-                    s = s.max(a.distance(b));
+                let (Some(p0), Some(p1)) = (w[0].contact, w[1].contact) else {
+                    continue;
+                };
+                let (c0, c1) = (w[0].centre, w[1].centre);
+                let l = c0.distance(c1);
+                if l <= 1e-15 || l >= 2.0 * r {
+                    continue;
                 }
+                let u = (c1 - c0) * (1.0 / l);
+                let n = Point::new(-u.y, u.x) * (r * r - 0.25 * l * l).sqrt();
+                let m = (c0 + c1) * 0.5;
+                let toward = (p0 + p1) * 0.5;
+                let q = if (m + n).distance(toward) < (m - n).distance(toward) {
+                    m + n
+                } else {
+                    m - n
+                };
+                let d = pieces
+                    .iter()
+                    .map(|piece| piece.nearest(q).0.distance(q))
+                    .fold(f64::INFINITY, f64::min);
+                cusp = cusp.max(d);
             }
         }
+        let r = self.dresser.r_left.min(self.dresser.r_right);
         let c = self.forming.chord;
-        s * s / 8.0 * (1.0 / r + 1.0 / self.profile.spec().r1) + c * c / (8.0 * r)
+        cusp + c * c / (8.0 * r)
     }
 }
 

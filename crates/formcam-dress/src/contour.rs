@@ -181,6 +181,13 @@ pub(crate) fn cut(
             let w = x - x0;
             if e0 >= 0.0 && e1 >= 0.0 {
                 res.area += 0.5 * (e0 + e1) * w;
+                // A cut from or to a point where the two touch.
+                if e0 == 0.0 && e1 > 0.0 {
+                    res.enter.get_or_insert(Point::new(x0, g0));
+                }
+                if e1 == 0.0 && e0 > 0.0 {
+                    res.leave = Some(Point::new(x, gl));
+                }
             } else if e0 > 0.0 || e1 > 0.0 {
                 let t = e0 / (e0 - e1);
                 let c = Point::new(x0 + t * w, g0 + t * (gl - g0));
@@ -194,8 +201,6 @@ pub(crate) fn cut(
                     res.area += 0.5 * e1 * (1.0 - t) * w;
                     res.enter.get_or_insert(c);
                 }
-            } else if e1 == 0.0 && e0 < 0.0 {
-                // Touching at x only: nothing removed.
             }
         } else if has_left && gr - dr > 1e-12 {
             res.spills = true;

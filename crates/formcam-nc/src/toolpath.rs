@@ -1055,9 +1055,9 @@ mod tests {
     fn fixed_decimals() {
         assert_eq!(fixed(-0.0004, 3), "0.000");
         assert_eq!(fixed(12.0, 0), "12");
-        assert_eq!(fixed(-3.14159, 4), "-3.1416");
+        assert_eq!(fixed(-2.71828, 4), "-2.7183");
         assert_eq!(fixed(0.05, 3), "0.050");
-        assert_eq!(printed(-3.14159, 4), -3.1416);
+        assert_eq!(printed(-2.71828, 4), -2.7183);
     }
 
     #[test]

@@ -1055,9 +1055,9 @@ mod tests {
     fn fixed_decimals() {
         assert_eq!(fixed(-0.0004, 3), "0.000");
         assert_eq!(fixed(12.0, 0), "12");
-        assert_eq!(fixed(-2.71828, 4), "-2.7183");
+        assert_eq!(fixed(-4.56789, 4), "-4.5679");
         assert_eq!(fixed(0.05, 3), "0.050");
-        assert_eq!(printed(-2.71828, 4), -2.7183);
+        assert_eq!(printed(-4.56789, 4), -4.5679);
     }
 
     #[test]

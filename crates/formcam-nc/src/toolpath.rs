@@ -320,7 +320,8 @@ fn lex(text: &str, base: usize, lineno: usize, flavor: Flavor) -> Result<Lexed, 
                         format!("`{ident}` changes the coordinate system, which is not supported"),
                     ));
                 }
-                out.complex.get_or_insert(text[s..].trim_end().to_string());
+                out.complex
+                    .get_or_insert_with(|| text[s..].trim_end().to_string());
                 // Skip the rest of this token.
                 i = e;
                 while i < b.len() && b[i] != b' ' && b[i] != b'\t' && b[i] != b';' {
@@ -389,16 +390,20 @@ fn lex(text: &str, base: usize, lineno: usize, flavor: Flavor) -> Result<Lexed, 
                         };
                         return Err(parse_err(lineno, text, what));
                     }
-                    out.complex.get_or_insert(text[i..].trim_end().to_string());
+                    out.complex
+                        .get_or_insert_with(|| text[i..].trim_end().to_string());
                     i = j.max(i + 1);
                     last_was_word = false;
                 }
             }
             continue;
         }
-        // Anything else: macros, expressions, stray characters.
-        out.complex.get_or_insert(text[i..].trim_end().to_string());
-        i += 1;
+        // Anything else: macros, expressions, stray characters (a whole
+        // UTF-8 character at a time).
+        if out.complex.is_none() {
+            out.complex = Some(text[i..].trim_end().to_string());
+        }
+        i += text[i..].chars().next().map_or(1, char::len_utf8);
         last_was_word = false;
     }
     out.spaced = blanks >= joins;
@@ -665,7 +670,14 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
                 } else {
                     std::f64::consts::FRAC_PI_2
                 };
-                let count = ((sweep / step).ceil() as usize).max(1);
+                let chords = (sweep / step).ceil();
+                if chords > 1e6 {
+                    return Err(err(format!(
+                        "the arc (radius {r:.3}) would need {chords:.0} chords within {tol} mm; \
+                         give a larger arc tolerance"
+                    )));
+                }
+                let count = (chords as usize).max(1);
                 let dir = if cw { -1.0 } else { 1.0 };
                 for k in 1..=count {
                     let f = k as f64 / count as f64;
@@ -1049,6 +1061,42 @@ mod tests {
 
     fn read(text: &str) -> Toolpath {
         read_toolpath(text, &ToolpathOptions::default()).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    #[test]
+    fn arbitrary_text_never_panics() {
+        // Lines drawn from the characters programs are made of, and some
+        // that they are not; every one must be read or refused, and what is
+        // read must be written back.
+        let alphabet: Vec<char> = "GgXYZIJKRNFMOo0123456789.-+ ()=;%/#[]\"\tØé,CR\r\n"
+            .chars()
+            .collect();
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        for _ in 0..20_000 {
+            let len = (next() % 40) as usize;
+            let text: String = (0..len)
+                .map(|_| alphabet[(next() % alphabet.len() as u64) as usize])
+                .collect();
+            for flavor in [Flavor::Iso, Flavor::Sinumerik, Flavor::LinuxCnc] {
+                let opts = ToolpathOptions {
+                    flavor,
+                    arc_tolerance_mm: 0.01,
+                };
+                let prefixed = format!("G0 X0 Y0 Z0\n{text}\n");
+                for t in [text.as_str(), prefixed.as_str()] {
+                    if let Ok(tp) = read_toolpath(t, &opts) {
+                        let pos: Vec<_> = tp.nodes.iter().map(|n| n.position).collect();
+                        assert!(tp.write(&pos, &["x".into()]).is_ok(), "{t:?}");
+                    }
+                }
+            }
+        }
     }
 
     #[test]

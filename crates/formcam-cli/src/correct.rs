@@ -54,6 +54,10 @@ pub struct CorrectArgs {
     /// Arcs (G2/G3) are written back as G1 chords within this distance, mm.
     #[arg(long, default_value_t = 0.001)]
     pub arc_tolerance: f64,
+    /// Split straight feed moves longer than this (mm) into pieces, so the
+    /// correction can bend them (default: moves are kept whole).
+    #[arg(long)]
+    pub max_segment: Option<f64>,
     /// The program's syntax: iso, sinumerik-840d, linuxcnc (default: from
     /// the extension).
     #[arg(long)]
@@ -121,7 +125,12 @@ enum Source {
 }
 
 impl Source {
-    fn read(path: &Path, dialect: Option<&str>, arc_tolerance: f64) -> Result<Self, CliError> {
+    fn read(
+        path: &Path,
+        dialect: Option<&str>,
+        arc_tolerance: f64,
+        max_segment: Option<f64>,
+    ) -> Result<Self, CliError> {
         let text = read_text(path)?;
         let at = |e: String| CliError(format!("{}: {e}", path.display()));
         if ext(path) == "csv" {
@@ -136,6 +145,11 @@ impl Source {
             Some(d) => Flavor::from_name(d).map_err(|e| CliError(format!("--dialect: {e}")))?,
             None => Flavor::from_extension(&ext(path)),
         };
+        if let Some(m) = max_segment
+            && !(m.is_finite() && m > 0.0)
+        {
+            return Err(CliError(format!("--max-segment {m}: must be > 0 mm")));
+        }
         if !(arc_tolerance.is_finite() && arc_tolerance > 0.0) {
             return Err(CliError(format!(
                 "--arc-tolerance {arc_tolerance}: must be > 0 mm"
@@ -146,6 +160,7 @@ impl Source {
             &ToolpathOptions {
                 flavor,
                 arc_tolerance_mm: arc_tolerance,
+                max_segment_mm: max_segment,
             },
         )
         .map_err(|e| at(e.to_string()))?;
@@ -244,7 +259,12 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
     let mut grid = Grid::from_measurements(&measurements, a.points_per_section)
         .map_err(|e| CliError(format!("{}: {e}", meas_path.display())))?;
     let smoothing = smooth(&mut grid, a.noise);
-    let source = Source::read(&prog_path, a.dialect.as_deref(), a.arc_tolerance)?;
+    let source = Source::read(
+        &prog_path,
+        a.dialect.as_deref(),
+        a.arc_tolerance,
+        a.max_segment,
+    )?;
     let (positions, movable) = source.nodes();
     let corrector =
         Corrector::new(&grid, options).map_err(|e| CliError(format!("correct: {e}")))?;
@@ -273,13 +293,21 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
     outside_lines.dedup();
     let totals = Totals::of(&corrections);
     let mut header = Vec::new();
-    if let Source::Gcode(tp) = &source
-        && tp.arcs_linearised > 0
-    {
-        header.push(format!(
-            "formcam correct: {} arc blocks G2/G3 linearised as G1 chords within {} mm",
-            tp.arcs_linearised, a.arc_tolerance
-        ));
+    if let Source::Gcode(tp) = &source {
+        if tp.arcs_linearised > 0 {
+            header.push(format!(
+                "formcam correct: {} arc blocks G2/G3 linearised as G1 chords within {} mm",
+                tp.arcs_linearised, a.arc_tolerance
+            ));
+        }
+        if let Some(m) = a.max_segment
+            && tp.moves_split > 0
+        {
+            header.push(format!(
+                "formcam correct: {} G1 moves split into pieces of at most {m} mm",
+                tp.moves_split
+            ));
+        }
     }
     let program = source.write(&new_positions, &header)?;
 
@@ -317,12 +345,13 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
     let mut entry = entry;
     entry["iteration"] = json!(history.len() + 1);
     history.push(entry);
-    let (arcs, flavor) = match &source {
+    let (arcs, split, flavor) = match &source {
         Source::Gcode(tp) => (
             tp.arcs_linearised,
+            tp.moves_split,
             format!("{:?}", tp.flavor()).to_lowercase(),
         ),
-        Source::Table(_) => (0, "csv".into()),
+        Source::Table(_) => (0, 0, "csv".into()),
     };
     let report = json!({
         "nodes": totals.nodes,
@@ -360,6 +389,8 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
         "program_syntax": flavor,
         "arcs_linearised": arcs,
         "arc_tolerance_mm": a.arc_tolerance,
+        "moves_split": split,
+        "max_segment_mm": a.max_segment,
         "measurements": name(&meas_path),
         "program": name(&prog_path),
         "output": name(&out_path),
@@ -634,6 +665,7 @@ struct JobTable {
     arc_tolerance_mm: f64,
     dialect: Option<String>,
     points_per_section: Option<usize>,
+    max_segment_mm: Option<f64>,
 }
 
 fn default_tool() -> String {
@@ -676,6 +708,7 @@ pub fn run_job_text(path: &Path, text: &str, out: &Path) -> Result<String, CliEr
         arc_tolerance: j.arc_tolerance_mm,
         dialect: j.dialect,
         points_per_section: j.points_per_section,
+        max_segment: j.max_segment_mm,
     };
     // A fresh report per demo run: the history is for runs on real parts.
     let _ = fs::remove_file(out.join("report.json"));

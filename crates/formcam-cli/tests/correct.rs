@@ -366,3 +366,60 @@ fn the_bundled_correction_example_runs() {
     assert_eq!(r["arcs_linearised"], 30);
     assert!(r["nodes_outside"].as_u64().unwrap() > 1000);
 }
+
+#[test]
+fn long_moves_are_split_on_request_so_the_correction_bends_them() {
+    let dir = scratch("split");
+    // The part is high in the middle along x: 0.0001 x (120 - x).
+    let mut cmm = String::from("section,point,x_nom,y_nom,z_nom,x_act,y_act,z_act\n");
+    for (j, y) in [0.0, 50.0, 100.0].iter().enumerate() {
+        for (i, x) in [0.0, 30.0, 60.0, 90.0, 120.0].iter().enumerate() {
+            let dz = 0.0001 * x * (120.0 - x);
+            cmm.push_str(&format!("S{j},{i},{x},{y},0,{x},{y},{dz}\n"));
+        }
+    }
+    let m = dir.join("cmm.csv");
+    std::fs::write(&m, cmm).unwrap();
+    let p = dir.join("line.nc");
+    let prog = "G90 G0 X0.000 Y50.000 Z5.000\nG1 Z0.000 F600\nX120.000\nG0 Z5.000\n";
+    std::fs::write(&p, prog).unwrap();
+    // Whole: both ends of the long move are where the part is right.
+    let whole = dir.join("whole.nc");
+    let o = run(&[
+        "correct",
+        "--measurements",
+        s(&m),
+        "--program",
+        s(&p),
+        "-o",
+        s(&whole),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read_to_string(&whole).unwrap(), prog);
+    // Split into 10 mm pieces: the middle goes down by the deviation.
+    let split = dir.join("split.nc");
+    let o = run(&[
+        "correct",
+        "--measurements",
+        s(&m),
+        "--program",
+        s(&p),
+        "-o",
+        s(&split),
+        "--max-segment",
+        "10",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&split).unwrap();
+    assert!(
+        text.starts_with("(formcam correct: 1 G1 moves split"),
+        "{text}"
+    );
+    assert!(text.contains("\nG1 X60.000 Z-0.360\n"), "{text}");
+    assert_eq!(
+        text.lines().filter(|l| l.starts_with("G1 X")).count(),
+        11,
+        "{text}"
+    );
+    assert_eq!(json(dir.join("split.report.json"))["moves_split"], 1);
+}

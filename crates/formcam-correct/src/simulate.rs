@@ -481,6 +481,7 @@ fn feed_nodes(program: &str) -> Result<(Toolpath, Vec<V3>), CorrectError> {
         &ToolpathOptions {
             flavor: Flavor::Iso,
             arc_tolerance_mm: 0.001,
+            max_segment_mm: None,
         },
     )?;
     let feed = tp

@@ -100,6 +100,10 @@ pub struct ToolpathOptions {
     pub flavor: Flavor,
     /// The largest distance of an arc's chords from the arc, mm (> 0).
     pub arc_tolerance_mm: f64,
+    /// Straight feed moves (`G1`) longer than this (mm) are split into equal
+    /// pieces, each a node (written back as `G1` lines), so that a correction
+    /// can bend them; `None` keeps them whole.
+    pub max_segment_mm: Option<f64>,
 }
 
 impl Default for ToolpathOptions {
@@ -107,6 +111,7 @@ impl Default for ToolpathOptions {
         Self {
             flavor: Flavor::Iso,
             arc_tolerance_mm: 0.001,
+            max_segment_mm: None,
         }
     }
 }
@@ -170,6 +175,8 @@ pub struct Toolpath {
     pub nodes: Vec<Node>,
     /// Arc blocks that were linearised.
     pub arcs_linearised: usize,
+    /// Feed moves split into pieces (`max_segment_mm`).
+    pub moves_split: usize,
     flavor: Flavor,
     format: NumberFormat,
 }
@@ -430,6 +437,13 @@ fn g_code(v: f64) -> Option<(u32, u32)> {
 
 /// Reads a milling program.
 pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, NcError> {
+    if let Some(m) = options.max_segment_mm
+        && !(m.is_finite() && m > 0.0)
+    {
+        return Err(NcError::program(format!(
+            "largest segment {m} mm: must be > 0"
+        )));
+    }
     if !(options.arc_tolerance_mm.is_finite() && options.arc_tolerance_mm > 0.0) {
         return Err(NcError::program(format!(
             "arc tolerance {} mm: must be > 0",
@@ -449,6 +463,7 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
         position: [f64::NAN; 3],
     };
     let mut arcs = 0usize;
+    let mut segments = 0usize;
     let mut max_dec = 0u32;
     let mut padded = true;
     let mut whole_point = false;
@@ -723,15 +738,42 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
                 });
                 arcs += 1;
             } else {
-                nodes.push(Node {
-                    position: to,
-                    kind: if st.motion == 0 {
-                        NodeKind::Rapid
-                    } else {
-                        NodeKind::Feed
-                    },
-                    line: lineno,
-                });
+                // A long feed move in pieces of at most `max_segment_mm`.
+                let length = (0..3)
+                    .map(|a| (to[a] - from[a]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                let pieces = match options.max_segment_mm {
+                    Some(max) if st.motion == 1 && length.is_finite() && length > max => {
+                        let n = (length / max).ceil();
+                        if n > 1e6 {
+                            return Err(err(format!(
+                                "the move ({length:.3} mm) would need {n:.0} pieces of {max} mm"
+                            )));
+                        }
+                        segments += 1;
+                        n as usize
+                    }
+                    _ => 1,
+                };
+                for k in 1..=pieces {
+                    let f = k as f64 / pieces as f64;
+                    let mut p = to;
+                    if k < pieces {
+                        for a in 0..3 {
+                            p[a] = from[a] + (to[a] - from[a]) * f;
+                        }
+                    }
+                    nodes.push(Node {
+                        position: p,
+                        kind: if st.motion == 0 {
+                            NodeKind::Rapid
+                        } else {
+                            NodeKind::Feed
+                        },
+                        line: lineno,
+                    });
+                }
             }
             st.position = to;
             let insert_at = axis_words
@@ -789,6 +831,7 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
         lines,
         nodes,
         arcs_linearised: arcs,
+        moves_split: segments,
         flavor,
         format: NumberFormat {
             decimals: if max_dec == 0 { 3 } else { max_dec },
@@ -1087,6 +1130,7 @@ mod tests {
                 let opts = ToolpathOptions {
                     flavor,
                     arc_tolerance_mm: 0.01,
+                    max_segment_mm: Some(0.5),
                 };
                 let prefixed = format!("G0 X0 Y0 Z0\n{text}\n");
                 for t in [text.as_str(), prefixed.as_str()] {
@@ -1097,6 +1141,34 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn long_feed_moves_are_split_and_written_as_g1_lines() {
+        let text = "G90 G0 X0 Y0 Z2\nG1 Z0 F500\nN30 X10. Y0. ; long\nG0 Z5\n";
+        let tp = read_toolpath(
+            text,
+            &ToolpathOptions {
+                max_segment_mm: Some(3.0),
+                ..ToolpathOptions::default()
+            },
+        )
+        .unwrap();
+        assert_eq!(tp.moves_split, 1);
+        let xs: Vec<f64> = tp
+            .nodes
+            .iter()
+            .filter(|n| n.line == 3)
+            .map(|n| n.position[0])
+            .collect();
+        assert_eq!(xs, [2.5, 5.0, 7.5, 10.0]);
+        let mut pos: Vec<_> = tp.nodes.iter().map(|n| n.position).collect();
+        pos[3][2] = -0.2; // the second piece's end
+        let out = tp.write(&pos, &[]).unwrap();
+        assert_eq!(
+            out,
+            "G90 G0 X0 Y0 Z2\nG1 Z0 F500\nN30 X2.5 Y0. ; long\nG1 X5. Z-0.2\nG1 X7.5 Z0.\nG1 X10.\nG0 Z5\n"
+        );
     }
 
     #[test]
@@ -1210,6 +1282,7 @@ mod tests {
             &ToolpathOptions {
                 flavor: Flavor::Sinumerik,
                 arc_tolerance_mm: 0.01,
+                max_segment_mm: None,
             },
         )
         .unwrap();

@@ -221,9 +221,21 @@ fn ranges(lines: &[usize]) -> String {
     out.join(", ")
 }
 
+/// `path` made absolute through its folder (the file itself need not exist).
+fn resolved(path: &Path) -> Option<PathBuf> {
+    if let Ok(p) = fs::canonicalize(path) {
+        return Some(p);
+    }
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    Some(fs::canonicalize(dir).ok()?.join(path.file_name()?))
+}
+
 fn same_file(a: &Path, b: &Path) -> bool {
-    match (fs::canonicalize(a), fs::canonicalize(b)) {
-        (Ok(x), Ok(y)) => x == y,
+    match (resolved(a), resolved(b)) {
+        (Some(x), Some(y)) => x == y,
         _ => false,
     }
 }
@@ -237,10 +249,27 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
     let meas_path = need(&a.measurements, "--measurements cmm.csv")?;
     let prog_path = need(&a.program, "--program mould.nc")?;
     let out_path = need(&a.output, "-o corrected.nc")?;
-    if same_file(&prog_path, &out_path) {
+    // No output may land on an input or on another output.
+    let mut outputs = vec![("-o", out_path.clone())];
+    if let Some(r) = &a.report {
+        outputs.push(("--report", r.clone()));
+    }
+    for (flag, o) in &outputs {
+        for (what, input) in [("program", &prog_path), ("measurements", &meas_path)] {
+            if same_file(o, input) {
+                return Err(CliError(format!(
+                    "{}: {flag} would overwrite the input {what}; give another {flag}",
+                    o.display()
+                )));
+            }
+        }
+    }
+    if let Some(r) = &a.report
+        && same_file(r, &out_path)
+    {
         return Err(CliError(format!(
-            "{}: the output would overwrite the input program; give another -o",
-            out_path.display()
+            "{}: --report and -o are the same file; give another --report",
+            r.display()
         )));
     }
     let options = Options {
@@ -354,7 +383,8 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
         Source::Table(_) => (0, 0, "csv".into()),
     };
     let report = json!({
-        "nodes": totals.nodes,
+        "nodes": positions.len(),
+        "nodes_feed": totals.nodes,
         "nodes_corrected": totals.corrected,
         "nodes_outside": totals.outside,
         "nodes_extrapolated": totals.extrapolated,
@@ -376,6 +406,7 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
         "points_per_section": grid.nu,
         "measured_points": measurements.len(),
         "resampled": grid.resampled,
+        "sections_reordered": grid.reordered,
         "smoothing": if a.noise > 0.0 {
             json!({
                 "noise_mm": smoothing.noise_mm,
@@ -441,7 +472,7 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
     Ok(format!(
         "{}: {} nodes, {} corrected, {} outside, max deviation {:.4} mm, max displacement {:.4} mm",
         out_path.display(),
-        totals.nodes,
+        positions.len(),
         totals.corrected,
         totals.outside,
         measurements.max_deviation(),

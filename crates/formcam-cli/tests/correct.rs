@@ -254,6 +254,32 @@ fn bad_input_gives_one_line_errors_and_no_program() {
     ]);
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("overwrite the input"));
+    let cmm_before = std::fs::read_to_string(&m).unwrap();
+    let o = run(&[
+        "correct",
+        "--measurements",
+        s(&m),
+        "--program",
+        s(&p),
+        "-o",
+        s(&m),
+    ]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("overwrite the input measurements"));
+    let x = dir.join("x.nc");
+    let o = run(&[
+        "correct",
+        "--measurements",
+        s(&m),
+        "--program",
+        s(&p),
+        "-o",
+        s(&x),
+        "--report",
+        s(&x),
+    ]);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("the same file"));
+    assert!(!x.exists());
+    assert_eq!(std::fs::read_to_string(&m).unwrap(), cmm_before);
     // Options out of range name the option.
     for (flag, value, want) in [
         ("--gain", "0", "gain = 0"),

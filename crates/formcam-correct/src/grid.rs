@@ -20,6 +20,62 @@ pub struct Grid {
     pub normal: Option<Vec<V3>>,
     /// Whether the sections were resampled to corresponding points.
     pub resampled: bool,
+    /// Whether the sections were put in spatial order (the report listed
+    /// them otherwise).
+    pub reordered: bool,
+}
+
+/// The sections in the order they lie across their direction: by their
+/// centroids projected on the direction in which the centroids spread
+/// (after removing the component along the sections). Sections that lie at
+/// the same place are an error.
+fn spatial_order(m: &Measurements) -> Result<Vec<usize>, CorrectError> {
+    let n = m.sections.len();
+    let centroid = |s: &crate::Section| {
+        let k = 1.0 / s.points.len() as f64;
+        s.points
+            .iter()
+            .fold([0.0; 3], |a, p| add(a, scale(p.nominal, k)))
+    };
+    let first = &m.sections[0].points;
+    let along = unit(sub(first[first.len() - 1].nominal, first[0].nominal));
+    let across: Vec<V3> = m
+        .sections
+        .iter()
+        .map(|s| {
+            let c = centroid(s);
+            sub(c, scale(along, dot(c, along)))
+        })
+        .collect();
+    let (far, spread) = across
+        .iter()
+        .enumerate()
+        .map(|(j, c)| (j, norm(sub(*c, across[0]))))
+        .fold((0, 0.0), |best, x| if x.1 > best.1 { x } else { best });
+    let size = m
+        .points()
+        .map(|p| norm(sub(p.nominal, m.sections[0].points[0].nominal)))
+        .fold(0.0, f64::max);
+    if spread <= 1e-9 * (1.0 + size) {
+        return Err(CorrectError::Sections(format!(
+            "sections `{}` and `{}` lie at the same place: sections must be apart",
+            m.sections[0].name,
+            m.sections[n - 1].name
+        )));
+    }
+    let e = unit(sub(across[far], across[0]));
+    let key: Vec<f64> = across.iter().map(|c| dot(*c, e)).collect();
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| key[a].total_cmp(&key[b]));
+    for w in order.windows(2) {
+        if key[w[1]] - key[w[0]] <= 1e-6 * spread {
+            return Err(CorrectError::Sections(format!(
+                "sections `{}` and `{}` lie at the same place: sections must be apart",
+                m.sections[w[0]].name, m.sections[w[1]].name
+            )));
+        }
+    }
+    Ok(order)
 }
 
 impl Grid {
@@ -54,8 +110,12 @@ impl Grid {
                 m.len()
             ));
         }
-        let mut prev_dir: Option<V3> = None;
-        for (j, s) in m.sections.iter().enumerate() {
+        if let Some(n) = points_per_section
+            && n > 100_000
+        {
+            return err(format!("points per section = {n}: at most 100000"));
+        }
+        for s in &m.sections {
             if s.points.len() < 2 {
                 return err(format!(
                     "section `{}` has {} point(s): a section needs at least 2",
@@ -63,6 +123,12 @@ impl Grid {
                     s.points.len()
                 ));
             }
+        }
+        let order = spatial_order(m)?;
+        let reordered = order.iter().enumerate().any(|(k, &j)| k != j);
+        let sections: Vec<&crate::Section> = order.iter().map(|&j| &m.sections[j]).collect();
+        let mut prev_dir: Option<V3> = None;
+        for (j, s) in sections.iter().enumerate() {
             let len: f64 = s
                 .points
                 .windows(2)
@@ -84,12 +150,12 @@ impl Grid {
                     "section `{}` runs the other way than section `{}`: list the points of every \
                      section in the same direction",
                     s.name,
-                    m.sections[j - 1].name
+                    sections[j - 1].name
                 ));
             }
             prev_dir = Some(dir);
         }
-        let counts: Vec<usize> = m.sections.iter().map(|s| s.points.len()).collect();
+        let counts: Vec<usize> = sections.iter().map(|s| s.points.len()).collect();
         let same = counts.iter().all(|&c| c == counts[0]);
         let nu = points_per_section.unwrap_or_else(|| counts.iter().copied().max().unwrap_or(2));
         let resample = !(same && nu == counts[0]);
@@ -97,7 +163,7 @@ impl Grid {
         let mut nominal = Vec::with_capacity(nu * nv);
         let mut deviation = Vec::with_capacity(nu * nv);
         let mut normal = (with_normals > 0).then(|| Vec::with_capacity(nu * nv));
-        for s in &m.sections {
+        for s in &sections {
             if !resample {
                 for p in &s.points {
                     nominal.push(p.nominal);
@@ -138,6 +204,7 @@ impl Grid {
             deviation,
             normal,
             resampled: resample,
+            reordered,
         })
     }
 
@@ -213,6 +280,35 @@ mod tests {
         assert_eq!(g.at(1, 0), [5.0, 0.0, 0.0]);
         assert!((g.deviation_at(1, 0)[2] - 0.5).abs() < 1e-15);
         assert_eq!(g.at(1, 1), [5.0, 5.0, 0.0]);
+    }
+
+    #[test]
+    fn sections_are_put_in_spatial_order_and_must_be_apart() {
+        // Listed as exports sort names: S1, S10, S2, ...
+        let mut sections: Vec<Section> = (1..=10)
+            .map(|k| section(&format!("S{k}"), 10.0 * k as f64, &[0.0, 5.0, 10.0]))
+            .collect();
+        sections.sort_by(|a, b| a.name.cmp(&b.name));
+        let m = Measurements { sections };
+        let g = Grid::from_measurements(&m, None).unwrap();
+        assert!(g.reordered);
+        for j in 0..g.nv {
+            assert_eq!(g.at(0, j)[1], 10.0 * (j + 1) as f64);
+        }
+        let same = Measurements {
+            sections: vec![
+                section("a", 0.0, &[0.0, 1.0]),
+                section("b", 5.0, &[0.0, 1.0]),
+                section("c", 5.0, &[0.0, 1.0]),
+            ],
+        };
+        let e = Grid::from_measurements(&same, None)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("sections `b` and `c` lie at the same place"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -96,7 +96,7 @@ impl Measurements {
             .enumerate()
             .map(|(i, l)| (i + 1, l.trim()))
             .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-        let Some((_, header)) = rows.next() else {
+        let Some((header_line, header)) = rows.next() else {
             return Err(CorrectError::Measurements("the file is empty".into()));
         };
         let names: Vec<String> = header
@@ -107,8 +107,8 @@ impl Measurements {
         let need = |n: &str| {
             col(n).ok_or_else(|| {
                 CorrectError::Measurements(format!(
-                    "line 1: no column `{n}` (the header needs section, point, x_nom, y_nom, z_nom, \
-                     and x_act, y_act, z_act or dev with nx, ny, nz)"
+                    "line {header_line}: no column `{n}` (the header needs section, point, x_nom, \
+                     y_nom, z_nom, and x_act, y_act, z_act or dev with nx, ny, nz)"
                 ))
             })
         };
@@ -119,9 +119,9 @@ impl Measurements {
             (Some(a), Some(b), Some(c)) => Some([a, b, c]),
             (None, None, None) => None,
             _ => {
-                return Err(CorrectError::Measurements(
-                    "line 1: give all of nx, ny, nz or none".into(),
-                ));
+                return Err(CorrectError::Measurements(format!(
+                    "line {header_line}: give all of nx, ny, nz or none"
+                )));
             }
         };
         let act_cols = match (col("x_act"), col("y_act"), col("z_act")) {
@@ -130,9 +130,9 @@ impl Measurements {
         };
         let dev_col = col("dev");
         if act_cols.is_none() && (dev_col.is_none() || normal_cols.is_none()) {
-            return Err(CorrectError::Measurements(
-                "line 1: give x_act, y_act, z_act, or dev with nx, ny, nz".into(),
-            ));
+            return Err(CorrectError::Measurements(format!(
+                "line {header_line}: give x_act, y_act, z_act, or dev with nx, ny, nz"
+            )));
         }
         let mut m = Measurements::default();
         for (line, row) in rows {

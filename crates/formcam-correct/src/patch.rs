@@ -392,6 +392,7 @@ mod tests {
             nominal,
             normal: None,
             resampled: false,
+            reordered: false,
         }
     }
 

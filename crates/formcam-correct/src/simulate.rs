@@ -120,6 +120,12 @@ impl Scenario {
         if !(self.noise.is_finite() && self.noise >= 0.0) {
             return bad(format!("cmm.noise = {}: must be >= 0", self.noise));
         }
+        if self.sections > 10_000 || self.points > 10_000 {
+            return bad(format!(
+                "cmm.sections = {}, cmm.points = {}: at most 10000 each",
+                self.sections, self.points
+            ));
+        }
         if self.sections < 2 || self.points < 2 {
             return bad(format!(
                 "cmm.sections = {}, cmm.points = {}: at least 2 each",
@@ -440,9 +446,9 @@ impl Scenario {
         let part0 = self.part(&nominal)?;
         let mut rows = Vec::new();
         for &count in section_counts {
-            if count < 2 {
+            if !(2..=10_000).contains(&count) {
                 return Err(CorrectError::Scenario(format!(
-                    "loop.section_study: {count} sections: at least 2"
+                    "loop.section_study: {count} sections: allowed 2 to 10000"
                 )));
             }
             let points = (((self.points - 1) as f64) * (count - 1) as f64

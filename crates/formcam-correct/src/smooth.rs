@@ -237,6 +237,7 @@ mod tests {
             deviation: dev,
             normal: Some(vec![[0.0, 0.0, 1.0]; nu * nv]),
             resampled: false,
+            reordered: false,
         };
         let err = |g: &Grid| {
             (g.deviation

@@ -35,6 +35,7 @@ fn grid(
         deviation,
         normal: None,
         resampled: false,
+        reordered: false,
     }
 }
 

@@ -140,6 +140,8 @@ struct MotionLine {
     nodes: Range<usize>,
     /// For an arc block: what turns it into a `G1` block.
     arc: Option<ArcEdit>,
+    /// The block starts with `/`: so do the lines added after it.
+    block_delete: bool,
 }
 
 /// The edits that make an arc block a straight one.
@@ -192,6 +194,8 @@ struct NumberFormat {
     whole_point: bool,
     /// Blanks between words.
     spaced: bool,
+    /// The motion word of added lines (`G1` or `G01`).
+    linear: &'static str,
 }
 
 /// A word of a line.
@@ -220,6 +224,8 @@ struct Lexed {
     code_end: usize,
     /// Blanks between words.
     spaced: bool,
+    /// The line starts with `/` (block delete).
+    block_delete: bool,
 }
 
 /// Sinumerik keywords that change the coordinate system.
@@ -288,8 +294,16 @@ fn lex(text: &str, base: usize, lineno: usize, flavor: Flavor) -> Result<Lexed, 
             }
         }
         if (c == b'/' || c == b'%') && out.words.is_empty() && out.complex.is_none() {
+            out.block_delete |= c == b'/';
             i += 1;
             continue;
+        }
+        if c == b'@' || c == b'^' {
+            return Err(parse_err(
+                lineno,
+                text,
+                "polar coordinates (`@`, `^`) are not supported",
+            ));
         }
         if c.is_ascii_alphabetic() {
             let s = i;
@@ -469,6 +483,9 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
     let mut whole_point = false;
     let mut whole_bare = false;
     let mut any_point = false;
+    let mut g_two_digit = 0usize;
+    let mut g_one_digit = 0usize;
+    let mut inch = false;
     let mut spaced_lines = 0usize;
     let mut joined_lines = 0usize;
     let mut start = 0usize;
@@ -498,6 +515,8 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
         let mut g_motion: Option<&Word> = None;
         let mut passive = false;
         let mut forget = false;
+        let mut bare_home = false;
+        let mut turns: Option<&Word> = None;
         for w in &lx.words {
             match w.letter {
                 b'X' | b'Y' | b'Z' => {
@@ -508,6 +527,7 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
                     axis_words[a] = Some(w);
                 }
                 b'I' | b'J' | b'K' => centre[(w.letter - b'I') as usize] = Some(w),
+                b'P' => turns = Some(w),
                 b'R' if flavor != Flavor::Sinumerik => radius = Some((w.value, w.whole.clone())),
                 b'A' | b'B' | b'C' | b'U' | b'V' | b'W' if !program_number => {
                     return Err(err(format!(
@@ -523,15 +543,27 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
                         (0..=3, 0) => {
                             st.motion = g as u8;
                             g_motion = Some(w);
+                            let digits = text[w.num.clone()].len();
+                            if digits >= 2 {
+                                g_two_digit += 1;
+                            } else {
+                                g_one_digit += 1;
+                            }
                         }
                         (90, 0) => st.incremental = false,
                         (91, 0) => st.incremental = true,
                         (90, 1) => st.centre_absolute = true,
                         (91, 1) => st.centre_absolute = false,
                         (17..=19, 0) => st.plane = g as u8,
-                        (20, 0) => st.scale = 25.4,
+                        (20, 0) => {
+                            st.scale = 25.4;
+                            inch = true;
+                        }
                         (21, 0) => st.scale = 1.0,
-                        (70 | 700, 0) if flavor == Flavor::Sinumerik => st.scale = 25.4,
+                        (70 | 700, 0) if flavor == Flavor::Sinumerik => {
+                            st.scale = 25.4;
+                            inch = true;
+                        }
                         (71 | 710, 0) if flavor == Flavor::Sinumerik => st.scale = 1.0,
                         (93, 0) => st.inverse_time = true,
                         (94 | 95, 0) => st.inverse_time = false,
@@ -539,6 +571,10 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
                         (28 | 30 | 53, _) => {
                             passive = true;
                             forget = true;
+                            bare_home |= g != 53;
+                        }
+                        (16, 0) => {
+                            return Err(err("polar coordinates (`G16`) are not supported".into()));
                         }
                         (92 | 52 | 10 | 51 | 68, _) => {
                             return Err(err(format!(
@@ -565,8 +601,10 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
             }
         }
         if forget {
+            // `G28`/`G30` without axis words send every axis home.
+            let all = bare_home && axis_words.iter().all(Option::is_none);
             for (a, w) in axis_words.iter().enumerate() {
-                if w.is_some() {
+                if w.is_some() || all {
                     st.position[a] = f64::NAN;
                     line.forgets[a] = true;
                 }
@@ -613,6 +651,14 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
                     return Err(err(
                         "arcs in inverse-time feed (G93) are not supported".into()
                     ));
+                }
+                if let Some(p) = turns
+                    && p.value != 1.0
+                {
+                    return Err(err(format!(
+                        "arcs of several turns (P{}) are not supported",
+                        p.value
+                    )));
                 }
                 let (u, v, n) = match st.plane {
                     17 => (0usize, 1usize, 2usize),
@@ -720,6 +766,7 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
                     .filter(|w| {
                         matches!(w.letter, b'I' | b'J' | b'K')
                             || (w.letter == b'R' && flavor != Flavor::Sinumerik)
+                            || w.letter == b'P'
                     })
                     .map(|w| w.whole.clone())
                     .collect();
@@ -745,6 +792,12 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
                     .sqrt();
                 let pieces = match options.max_segment_mm {
                     Some(max) if st.motion == 1 && length.is_finite() && length > max => {
+                        if st.inverse_time {
+                            return Err(err(
+                                "splitting moves in inverse-time feed (G93) is not supported"
+                                    .into(),
+                            ));
+                        }
                         let n = (length / max).ceil();
                         if n > 1e6 {
                             return Err(err(format!(
@@ -808,6 +861,7 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
                 scale: st.scale,
                 nodes: first_node..nodes.len(),
                 arc: arc_edit,
+                block_delete: lx.block_delete,
             });
         }
         lines.push(line);
@@ -834,10 +888,18 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
         moves_split: segments,
         flavor,
         format: NumberFormat {
-            decimals: if max_dec == 0 { 3 } else { max_dec },
-            padded: padded && any_point && max_dec > 0,
+            // At least 3 decimals in mm, 4 in inches, whatever the program
+            // wrote: a correction of hundredths must not be rounded away.
+            decimals: max_dec.max(if inch { 4 } else { 3 }),
+            // Padding is kept only at the program's own precision.
+            padded: padded && any_point && max_dec >= if inch { 4 } else { 3 },
             whole_point: whole_point || !whole_bare,
             spaced: spaced_lines >= joined_lines,
+            linear: if g_two_digit > g_one_digit {
+                "G01"
+            } else {
+                "G1"
+            },
         },
     })
 }
@@ -885,6 +947,7 @@ impl Toolpath {
                 let lt = t[line.text.clone()].trim_start();
                 // After the leading `%` and program-number lines.
                 let lead = lt.starts_with('%')
+                    || lt.starts_with(";$PATH")
                     || (lt.starts_with(['O', 'o'])
                         && lt[1..].starts_with(|c: char| c.is_ascii_digit()));
                 if !lead {
@@ -967,7 +1030,7 @@ impl Toolpath {
                             if moves {
                                 let s = self.format_like(prog, "");
                                 let v = printed(prog, self.format.decimals);
-                                if self.format.spaced || k > 0 {
+                                if self.format.spaced {
                                     inserts.push(' ');
                                 }
                                 inserts.push((b'X' + a as u8) as char);
@@ -984,10 +1047,14 @@ impl Toolpath {
                 if k == 0 {
                     if let Some(arc) = &m.arc {
                         match &arc.g_word {
-                            Some(g) => edits.push((g.clone(), "G1".into())),
+                            Some(g) => edits.push((g.clone(), self.format.linear.into())),
                             None => edits.push((
                                 arc.g_insert_at..arc.g_insert_at,
-                                if self.format.spaced { "G1 " } else { "G1" }.into(),
+                                if self.format.spaced {
+                                    format!("{} ", self.format.linear)
+                                } else {
+                                    self.format.linear.into()
+                                },
                             )),
                         }
                         for r in &arc.remove {
@@ -1020,7 +1087,10 @@ impl Toolpath {
                         out.push_str(&t[line.eol.clone()]);
                     }
                 } else {
-                    out.push_str("G1");
+                    if m.block_delete {
+                        out.push('/');
+                    }
+                    out.push_str(self.format.linear);
                     out.push_str(&inserts);
                     if k + 1 < count {
                         out.push_str(line_eol);
@@ -1046,7 +1116,29 @@ impl Toolpath {
         if s.ends_with('.') && !f.whole_point {
             s.pop();
         }
+        let plus = like.starts_with('+');
         let like = like.trim_start_matches('+');
+        // Zero-padded whole part (`030.000`): keep its width.
+        let whole_width = like
+            .trim_start_matches('-')
+            .split('.')
+            .next()
+            .map_or(0, str::len);
+        if like.trim_start_matches('-').starts_with('0') && whole_width > 1 {
+            let neg = s.starts_with('-');
+            let body = s.trim_start_matches('-');
+            let whole = body.split('.').next().map_or(0, str::len);
+            if whole < whole_width {
+                s = format!(
+                    "{}{}{body}",
+                    if neg { "-" } else { "" },
+                    "0".repeat(whole_width - whole)
+                );
+            }
+        }
+        if plus && !s.starts_with('-') {
+            s.insert(0, '+');
+        }
         if (like.starts_with('.') || like.starts_with("-.")) && s.contains('.') {
             if let Some(rest) = s.strip_prefix("0.") {
                 s = format!(".{rest}");
@@ -1168,6 +1260,71 @@ mod tests {
         assert_eq!(
             out,
             "G90 G0 X0 Y0 Z2\nG1 Z0 F500\nN30 X2.5 Y0. ; long\nG1 X5. Z-0.2\nG1 X7.5 Z0.\nG1 X10.\nG0 Z5\n"
+        );
+    }
+
+    #[test]
+    fn added_lines_follow_the_program_style() {
+        // Two-digit G words, no blanks, block delete, plus signs, zero
+        // padding, few decimals.
+        let text = "N1G90G00X0Y0Z0\n/N2G02X+20.0Y0R10.0F100\nN3G01X030.5\n";
+        let tp = read(text);
+        let mut pos: Vec<_> = tp.nodes.iter().map(|n| n.position).collect();
+        let last = pos.len() - 1;
+        pos[last][0] -= 0.05;
+        let out = tp.write(&pos, &[]).unwrap();
+        let lines: Vec<&str> = out.lines().collect();
+        assert!(lines[1].starts_with("/N2G01X+"), "{out}");
+        assert!(lines[2].starts_with("/G01X"), "{out}");
+        assert!(!lines[2].contains(' '), "{out}");
+        assert_eq!(lines[lines.len() - 1], "N3G01X030.45", "{out}");
+    }
+
+    #[test]
+    fn homing_forgets_the_position_and_unsupported_forms_are_refused() {
+        let tp = read("G0 X0 Y0 Z5\nG1 Z0 F100\nG28\nG1 X30 Y30\n");
+        let last = tp.nodes[tp.nodes.len() - 1].position;
+        assert!(last[2].is_nan(), "{last:?}");
+        let pos: Vec<_> = tp.nodes.iter().map(|n| n.position).collect();
+        assert!(tp.write(&pos, &[]).unwrap().ends_with("G1 X30 Y30\n"));
+        let bad = [
+            ("G0 X0 Y0\nG2 X20 Y0 I10 J0 P3\n", "several turns"),
+            ("G0 X0 Y0\nG16 G1 X20 Y45\n", "G16"),
+            ("G0 X0 Y0\nG1 @20 ^45\n", "polar"),
+            ("G0 X0 Y0 Z0\nG93 G1 X40 F2\n", "inverse-time"),
+        ];
+        for (text, want) in bad {
+            let e = read_toolpath(
+                text,
+                &ToolpathOptions {
+                    flavor: Flavor::LinuxCnc,
+                    max_segment_mm: Some(10.0),
+                    ..ToolpathOptions::default()
+                },
+            )
+            .unwrap_err()
+            .to_string();
+            assert!(e.contains(want), "{text:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn the_header_goes_after_the_sinumerik_path_line_and_few_decimals_grow() {
+        let text = "%_N_PART_MPF\n;$PATH=/_N_MPF_DIR\nG0 X0 Y0 Z5\nG1 Z0.5 F500\n";
+        let tp = read_toolpath(
+            text,
+            &ToolpathOptions {
+                flavor: Flavor::Sinumerik,
+                ..ToolpathOptions::default()
+            },
+        )
+        .unwrap();
+        let mut pos: Vec<_> = tp.nodes.iter().map(|n| n.position).collect();
+        pos[1][2] = 0.45;
+        let out = tp.write(&pos, &["note".into()]).unwrap();
+        assert_eq!(
+            out,
+            "%_N_PART_MPF\n;$PATH=/_N_MPF_DIR\n; note\nG0 X0 Y0 Z5\nG1 Z0.45 F500\n"
         );
     }
 

@@ -36,6 +36,7 @@ pub fn grid(n: usize) -> Grid {
         deviation,
         normal: None,
         resampled: false,
+        reordered: false,
     }
 }
 

@@ -208,6 +208,19 @@ fn summary(name: &str, d: &Dressing) -> serde_json::Value {
     let [cr, cl] = d.profile.contacts();
     let held = (0..f.feed.len()).filter(|&k| f.held(k)).count();
     let steady = d.forming.steps.iter().filter(|s| s.steady).count();
+    // Steady steps whose rate is more than 5 % off the target: where the
+    // feed is free (at neither limit and not held by the change limit), and
+    // where the change limit holds it.
+    let off = |k: usize| {
+        let s = &d.forming.steps[k];
+        s.steady
+            && s.length > 0.0
+            && (s.area / s.length * f.feed[k] / f.target - 1.0).abs() > 0.05
+            && !f.at_bound(k, fs)
+    };
+    let off_free = (0..f.feed.len()).filter(|&k| off(k) && !f.held(k)).count();
+    let off_held = (0..f.feed.len()).filter(|&k| off(k) && f.held(k)).count();
+    let merged = d.forming.steps.len() - d.step_block.last().map_or(0, |b| b + 1);
     let fmin = f.feed.iter().copied().fold(f64::INFINITY, f64::min);
     let fmax = f.feed.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let passes: Vec<serde_json::Value> = d
@@ -244,6 +257,9 @@ fn summary(name: &str, d: &Dressing) -> serde_json::Value {
         "steps": d.forming.steps.len(),
         "steps_steady": steady,
         "steps_feed_held_by_change_limit": held,
+        "steps_off_target_feed_free": off_free,
+        "steps_off_target_feed_held": off_held,
+        "steps_merged_below_resolution": merged,
         "step_mm": d.step,
         "chord_mm": d.forming.chord,
         "removed_area_mm2": removed,

@@ -36,10 +36,31 @@ pub fn write_all<S: AsRef<str>>(dir: &Path, files: &[(S, Vec<u8>)]) -> Result<()
         }
         temps.push(tmp);
     }
-    for ((name, _), tmp) in files.iter().zip(&temps) {
+    // A target that cannot be replaced (a folder) stops the run before any
+    // file is renamed, so the folder never mixes two runs.
+    for (name, _) in files {
+        let target = dir.join(name.as_ref());
+        if target.is_dir() {
+            for t in &temps {
+                let _ = fs::remove_file(t);
+            }
+            return Err(CliError(format!(
+                "{}: cannot write: a folder is in the way",
+                target.display()
+            )));
+        }
+    }
+    for (k, ((name, _), tmp)) in files.iter().zip(&temps).enumerate() {
         let name = name.as_ref();
-        fs::rename(tmp, dir.join(name))
-            .map_err(|e| CliError(format!("{}: cannot write: {e}", dir.join(name).display())))?;
+        if let Err(e) = fs::rename(tmp, dir.join(name)) {
+            for t in &temps[k..] {
+                let _ = fs::remove_file(t);
+            }
+            return Err(CliError(format!(
+                "{}: cannot write: {e}",
+                dir.join(name).display()
+            )));
+        }
     }
     Ok(())
 }

@@ -134,11 +134,15 @@ fn the_seed_job_writes_consistent_outputs() {
     assert!((first + 3.0).abs() < 1e-9);
     let (h, rows) = csv(&read(&out, "dresser.csv"));
     assert_eq!(&h[..2], ["z", "x"]);
+    // Path points and the four rapid moves, less the steps merged because
+    // they would print as zero-length moves.
+    let merged = summary["steps_merged_below_resolution"].as_u64().unwrap() as usize;
     assert_eq!(
-        rows.len() + 4,
+        rows.len() + 4 - merged,
         gotos,
         "path points and the four rapid moves"
     );
+    assert_eq!(summary["steps_off_target_feed_free"], 0);
 
     for svg in ["profile.svg", "mrr.svg"] {
         assert!(read(&out, svg).contains("<svg"), "{svg}");
@@ -282,4 +286,32 @@ fn the_demo_runs_the_dressing_example() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(out.join("dress-ballscrew-nut/program.cls").exists());
     assert!(out.join("dress-ballscrew-nut/summary.json").exists());
+}
+
+#[test]
+fn a_folder_in_the_way_leaves_the_last_run_whole() {
+    let (o, out) = run_job("in-the-way", EXAMPLE);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let profile = read(&out, "profile.csv");
+    let summary = read(&out, "summary.json");
+    std::fs::remove_file(out.join("mrr.csv")).unwrap();
+    std::fs::create_dir(out.join("mrr.csv")).unwrap();
+    let job = out.parent().unwrap().join("job.toml");
+    std::fs::write(&job, EXAMPLE.replace("step = 0.01", "step = 0.02")).unwrap();
+    let o = formcam()
+        .arg("dress")
+        .arg(&job)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("a folder is in the way"));
+    assert_eq!(read(&out, "profile.csv"), profile);
+    assert_eq!(read(&out, "summary.json"), summary);
+    let names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into())
+        .collect();
+    assert!(names.iter().all(|n| !n.ends_with(".tmp")), "{names:?}");
 }

@@ -61,6 +61,9 @@ pub struct Dressing {
     pub feed: FeedPlan,
     /// The NC program: axes Z (the wheel's axis) and X (radial), point A.
     pub program: Program,
+    /// For each step, the linear block of the program that ends it: steps
+    /// that would print as zero-length moves are merged into one block.
+    pub step_block: Vec<usize>,
 }
 
 impl Dressing {
@@ -213,7 +216,8 @@ pub fn dress(spec: &DressSpec) -> Result<Dressing, DressError> {
     let forming = simulate(&dresser, &passes, &initial, chord);
     check_gouge(&profile, &dresser, &forming)?;
     let feed = plan_feed(&forming.steps, &feed_spec);
-    let program = dressing_program(&spec.name, &profile, &dresser, &passes, &forming, &feed)?;
+    let (program, step_block) =
+        dressing_program(&spec.name, &profile, &dresser, &passes, &forming, &feed)?;
     Ok(Dressing {
         profile,
         dresser,
@@ -224,6 +228,7 @@ pub fn dress(spec: &DressSpec) -> Result<Dressing, DressError> {
         feed_spec,
         feed,
         program,
+        step_block,
     })
 }
 

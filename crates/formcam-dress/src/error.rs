@@ -73,9 +73,24 @@ pub(crate) fn num(v: f64) -> String {
     if !v.is_finite() {
         return format!("{v}");
     }
-    let s = format!("{v:.6}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" { "0".into() } else { s.into() }
+    // Six decimals, or six significant digits for small values (so that a
+    // tiny value never reads as 0).
+    let s = if v != 0.0 && v.abs() < 1e-3 {
+        format!("{v:.5e}")
+    } else {
+        format!("{v:.6}")
+    };
+    let (mantissa, exp) = match s.find('e') {
+        Some(k) => (&s[..k], &s[k..]),
+        None => (s.as_str(), ""),
+    };
+    let m = if mantissa.contains('.') {
+        mantissa.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        mantissa
+    };
+    let out = format!("{m}{exp}");
+    if out == "-0" { "0".into() } else { out }
 }
 
 /// Checks that `v` is finite, naming `field` (with `unit` for the message).
@@ -99,7 +114,9 @@ mod tests {
     fn numbers_for_messages() {
         assert_eq!(num(0.296), "0.296");
         assert_eq!(num(6.0), "6");
-        assert_eq!(num(-0.0000001), "0");
+        assert_eq!(num(-0.0000001), "-1e-7");
+        assert_eq!(num(1.23456789e-4), "1.23457e-4");
+        assert_eq!(num(-0.0), "0");
         assert_eq!(mm(0.9), "0.9 mm");
         assert_eq!(deg(45.0), "45°");
         assert_eq!(num(f64::NAN), "NaN");

@@ -46,11 +46,19 @@ impl FeedSpec {
     pub fn check(&self) -> Result<FeedSpec, DressError> {
         let lo = finite("process.feed_min", self.feed_min, " mm/min")?;
         let hi = finite("process.feed_max", self.feed_max, " mm/min")?;
-        if lo <= 0.0 {
+        // The programs write feeds to 0.1 mm/min.
+        if lo < 0.1 {
             return Err(DressError::field(
                 "process.feed_min",
                 format!("{} mm/min", num(lo)),
-                "must be positive",
+                "must be at least 0.1 mm/min",
+            ));
+        }
+        if hi > 100_000.0 {
+            return Err(DressError::field(
+                "process.feed_max",
+                format!("{} mm/min", num(hi)),
+                "must be at most 100000 mm/min",
             ));
         }
         if hi < lo {

@@ -2,7 +2,7 @@
 
 use formcam_nc::{Dialect, Program};
 
-use crate::error::{finite, mm};
+use crate::error::{finite, mm, num};
 use crate::forming::offset_contour;
 use crate::program::dressing_program;
 use crate::{
@@ -161,6 +161,21 @@ pub fn dress(spec: &DressSpec) -> Result<Dressing, DressError> {
     let dresser = Dresser::new(&spec.dresser, &profile)?;
     let h = finite("process.step", spec.step, " mm")?;
     let h_max = 0.5 * dresser.r_left.min(dresser.r_right);
+    if h_max < STEP_MIN {
+        let (field, r) = if dresser.r_left <= dresser.r_right {
+            ("dresser.corner_radius_left", dresser.r_left)
+        } else {
+            ("dresser.corner_radius_right", dresser.r_right)
+        };
+        return Err(DressError::field(
+            field,
+            mm(r),
+            format!(
+                "must be at least {} (twice the least step)",
+                mm(2.0 * STEP_MIN)
+            ),
+        ));
+    }
     if !(STEP_MIN..=h_max).contains(&h) {
         return Err(DressError::field(
             "process.step",
@@ -169,6 +184,21 @@ pub fn dress(spec: &DressSpec) -> Result<Dressing, DressError> {
                 "must be in [{}, {}] (half the smaller corner radius)",
                 mm(STEP_MIN),
                 mm(h_max)
+            ),
+        ));
+    }
+    // The work grows as 1/h^2: steps along a path of about twice the width,
+    // each against a dresser outline of corner arcs cut at h / 2.
+    let steps = 2.0 * spec.wheel.width / h;
+    let work = steps * std::f64::consts::PI * dresser.r_left.max(dresser.r_right) / h;
+    if steps > 5e6 || work > 2e9 {
+        return Err(DressError::field(
+            "process.step",
+            mm(h),
+            format!(
+                "about {} steps against a dresser of {} chords is too much work; use a larger step",
+                num(steps.round()),
+                num((work / steps).round())
             ),
         ));
     }

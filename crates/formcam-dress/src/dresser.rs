@@ -272,29 +272,7 @@ impl Outline {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::WheelSpec;
-
-    fn profile() -> Profile {
-        Profile::new(&WheelSpec {
-            ball_radius: 1.85,
-            contact_angle: 45f64.to_radians(),
-            r1: 1.937,
-            r2: 0.296,
-            width: 6.0,
-            flank_tilt: 10f64.to_radians(),
-            arc_angle: 0.2618,
-        })
-        .unwrap()
-    }
-
-    fn seed() -> DresserSpec {
-        DresserSpec {
-            width: 2.9,
-            corner_radius_left: 0.258,
-            corner_radius_right: 0.279,
-            yo: None,
-        }
-    }
+    use crate::fixtures::{dresser_spec as seed, profile};
 
     #[test]
     fn outline_is_the_rounded_periphery() {

@@ -60,6 +60,8 @@ mod dresser;
 mod dressing;
 mod error;
 mod feed;
+#[cfg(test)]
+mod fixtures;
 mod forming;
 mod job;
 mod path;

@@ -214,31 +214,8 @@ fn right_half(profile: &Profile, r: f64, h: f64) -> Vec<Stretch> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{DresserSpec, WheelSpec};
-
-    fn setup() -> (Profile, Dresser) {
-        let p = Profile::new(&WheelSpec {
-            ball_radius: 1.85,
-            contact_angle: 45f64.to_radians(),
-            r1: 1.937,
-            r2: 0.296,
-            width: 6.0,
-            flank_tilt: 10f64.to_radians(),
-            arc_angle: 0.2618,
-        })
-        .unwrap();
-        let d = Dresser::new(
-            &DresserSpec {
-                width: 2.9,
-                corner_radius_left: 0.258,
-                corner_radius_right: 0.279,
-                yo: None,
-            },
-            &p,
-        )
-        .unwrap();
-        (p, d)
-    }
+    use crate::DresserSpec;
+    use crate::fixtures::setup;
 
     #[test]
     fn the_path_is_the_equidistant() {

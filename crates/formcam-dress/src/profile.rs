@@ -390,19 +390,7 @@ impl Profile {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The seed's published wheel (fig. 9, 11).
-    pub(crate) fn seed() -> WheelSpec {
-        WheelSpec {
-            ball_radius: 1.85,
-            contact_angle: 45f64.to_radians(),
-            r1: 1.937,
-            r2: 0.296,
-            width: 6.0,
-            flank_tilt: 10f64.to_radians(),
-            arc_angle: 0.2618,
-        }
-    }
+    use crate::fixtures::wheel as seed;
 
     #[test]
     fn joints_are_continuous_and_tangent() {

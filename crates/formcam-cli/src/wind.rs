@@ -37,8 +37,13 @@ struct Job {
 fn read_job(path: &Path) -> Result<Job, CliError> {
     let text = fs::read_to_string(path)
         .map_err(|e| CliError(format!("{}: cannot read the job file: {e}", path.display())))?;
-    toml::from_str(&text).map_err(|e| {
-        let (line, col) = e.span().map_or((0, 0), |s| line_col(&text, s.start));
+    parse_job(path, &text)
+}
+
+/// A winding job from the text of `path`.
+fn parse_job(path: &Path, text: &str) -> Result<Job, CliError> {
+    toml::from_str(text).map_err(|e| {
+        let (line, col) = e.span().map_or((0, 0), |s| line_col(text, s.start));
         let msg = e.message().replace('\n', " ");
         CliError(format!("{}:{line}:{col}: {msg}", path.display()))
     })
@@ -873,7 +878,7 @@ pub fn run_demo(examples: &Path, out: &Path) -> Result<(), CliError> {
                 continue;
             }
         }
-        let j = read_job(job)?;
+        let j = parse_job(job, &text)?;
         let stage = if j.machine.is_some() && (j.post.is_some() || j.layer.is_some()) {
             Stage::Program
         } else if j.machine.is_some() {

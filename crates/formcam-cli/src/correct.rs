@@ -15,6 +15,7 @@ use serde_json::{Value, json};
 
 use crate::CliError;
 use crate::output::write_all;
+use crate::plot::{Series, panels_svg, svg_err};
 
 /// Options of `formcam correct`.
 #[derive(Debug, clap::Args)]
@@ -491,15 +492,11 @@ const PALETTE: [RGBColor; 8] = [
     RGBColor(127, 127, 127),
 ];
 
-fn plot_err(file: &str) -> impl Fn(String) -> CliError + '_ {
-    move |e| CliError(format!("{file}: {e}"))
-}
-
 /// The measured deviation along the surface normal, per section, against
-/// the arc length along the section.
+/// the arc length along the section (a legend up to 16 sections).
 pub fn deviations_svg(m: &Measurements, grid: &Grid) -> Result<Vec<u8>, CliError> {
-    let err = plot_err("deviations.svg");
-    let mut series: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    let legend = m.sections.len() <= 16;
+    let mut series: Vec<Series> = Vec::new();
     // The grid normal of the section's first point orients the sign.
     for (j, s) in m.sections.iter().enumerate() {
         let n0 = grid.normal_at(0, j.min(grid.nv - 1));
@@ -517,62 +514,26 @@ pub fn deviations_svg(m: &Measurements, grid: &Grid) -> Result<Vec<u8>, CliError
             let n = p.normal.unwrap_or(n0);
             pts.push((acc, d[0] * n[0] + d[1] * n[1] + d[2] * n[2]));
         }
-        series.push((s.name.clone(), pts));
+        let label = if legend {
+            s.name.clone()
+        } else {
+            String::new()
+        };
+        series.push((label, pts, PALETTE[j % PALETTE.len()]));
     }
-    let (x1, y0, y1) = series
-        .iter()
-        .flat_map(|s| s.1.iter())
-        .fold((1e-9f64, -1e-6f64, 1e-6f64), |(x1, y0, y1), p| {
-            (x1.max(p.0), y0.min(p.1), y1.max(p.1))
-        });
-    let pad = 0.08 * (y1 - y0);
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (900, 500)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(
-                format!(
-                    "Measured deviation per section (max {:.4} mm, rms {:.4} mm)",
-                    m.max_deviation(),
-                    m.rms_deviation()
-                ),
-                ("sans-serif", 18),
-            )
-            .margin(10)
-            .x_label_area_size(35)
-            .y_label_area_size(60)
-            .build_cartesian_2d(0.0..x1, (y0 - pad)..(y1 + pad))
-            .map_err(|e| err(e.to_string()))?;
-        chart
-            .configure_mesh()
-            .x_desc("length along the section, mm")
-            .y_desc("deviation along the normal, mm")
-            .draw()
-            .map_err(|e| err(e.to_string()))?;
-        let legend = series.len() <= 16;
-        for (k, (name, pts)) in series.into_iter().enumerate() {
-            let color = PALETTE[k % PALETTE.len()];
-            let drawn = chart
-                .draw_series(LineSeries::new(pts, color.stroke_width(2)))
-                .map_err(|e| err(e.to_string()))?;
-            if legend {
-                drawn
-                    .label(name)
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
-            }
-        }
-        if legend {
-            chart
-                .configure_series_labels()
-                .border_style(BLACK)
-                .background_style(WHITE.mix(0.8))
-                .draw()
-                .map_err(|e| err(e.to_string()))?;
-        }
-        root.present().map_err(|e| err(e.to_string()))?;
-    }
-    Ok(svg.into_bytes())
+    panels_svg(
+        "deviations.svg",
+        &format!(
+            "Measured deviation per section (max {:.4} mm, rms {:.4} mm)",
+            m.max_deviation(),
+            m.rms_deviation()
+        ),
+        vec![(
+            "length along the section, mm",
+            "deviation along the normal, mm",
+            series,
+        )],
+    )
 }
 
 /// The displacement of the nodes (along the surface normal, coloured) over
@@ -582,7 +543,7 @@ pub fn displacement_svg(
     corrections: &[formcam_correct::NodeCorrection],
     grid: &Grid,
 ) -> Result<Vec<u8>, CliError> {
-    let err = plot_err("displacement.svg");
+    let err = svg_err("displacement.svg");
     let step = nodes.len().div_ceil(20_000).max(1);
     let mut pts = Vec::new();
     for (k, (p, c)) in nodes.iter().zip(corrections).enumerate().step_by(step) {
@@ -1001,10 +962,9 @@ pub fn simulate_text(path: &Path, text: &str, out: &Path) -> Result<String, CliE
 
 /// A named, coloured line of a plot.
 type Line = (&'static str, Vec<(f64, f64)>, RGBColor);
-
 /// Max and RMS deviation per round, log scale.
 fn convergence_svg(r: &LoopResult) -> Result<Vec<u8>, CliError> {
-    let err = plot_err("convergence.svg");
+    let err = svg_err("convergence.svg");
     let n = r.rounds.len();
     let lines: [Line; 4] = [
         (

@@ -13,6 +13,7 @@ use serde_json::json;
 
 use crate::CliError;
 use crate::output::write_all;
+use crate::plot::{Panel, Series, panels_svg, range, svg_err};
 
 /// Whether a job's top-level table is a dressing job (it has `[wheel]`).
 pub fn is_job(table: &toml::Table) -> bool {
@@ -285,12 +286,6 @@ fn summary(name: &str, d: &Dressing) -> serde_json::Value {
     v
 }
 
-type Series = (String, Vec<(f64, f64)>, RGBColor);
-
-fn svg_err(file: &str) -> impl Fn(String) -> CliError + '_ {
-    move |e| CliError(format!("{file}: {e}"))
-}
-
 /// The profile, the allowance, the dresser's paths (corner centre and point
 /// A), the dresser at the start of the first pass and the ball, to scale.
 fn profile_svg(title: &str, d: &Dressing) -> Result<Vec<u8>, CliError> {
@@ -396,7 +391,6 @@ fn profile_svg(title: &str, d: &Dressing) -> Result<Vec<u8>, CliError> {
 
 /// The removal rate with and without feed control, and the feed, against Z.
 fn mrr_svg(title: &str, d: &Dressing) -> Result<Vec<u8>, CliError> {
-    let err = svg_err("mrr.svg");
     let f = &d.feed;
     let per_pass = |values: &[f64]| -> Vec<Vec<(f64, f64)>> {
         d.passes
@@ -413,8 +407,9 @@ fn mrr_svg(title: &str, d: &Dressing) -> Result<Vec<u8>, CliError> {
             })
             .collect()
     };
-    let panels: Vec<(&str, Vec<Series>)> = vec![
+    let panels: Vec<Panel> = vec![
         (
+            "Z, mm",
             "removal rate, mm²/min",
             per_pass(&f.mrr_uncontrolled)
                 .into_iter()
@@ -433,6 +428,7 @@ fn mrr_svg(title: &str, d: &Dressing) -> Result<Vec<u8>, CliError> {
                 .collect(),
         ),
         (
+            "Z, mm",
             "feed, mm/min",
             per_pass(&f.feed)
                 .into_iter()
@@ -440,6 +436,7 @@ fn mrr_svg(title: &str, d: &Dressing) -> Result<Vec<u8>, CliError> {
                 .collect(),
         ),
         (
+            "Z, mm",
             "cut-arc angle, rad",
             per_pass(
                 &d.forming
@@ -453,68 +450,13 @@ fn mrr_svg(title: &str, d: &Dressing) -> Result<Vec<u8>, CliError> {
             .collect(),
         ),
     ];
-    let mut svg = String::new();
-    {
-        let root =
-            SVGBackend::with_string(&mut svg, (900, 300 * panels.len() as u32)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
-        let root = root
-            .titled(
-                &format!("{title}: removal rate and feed against Z (point A)"),
-                ("sans-serif", 18),
-            )
-            .map_err(|e| err(e.to_string()))?;
-        let areas = root.split_evenly((panels.len(), 1));
-        for (area, (ylabel, series)) in areas.iter().zip(panels) {
-            let (x0, x1) = range(series.iter().flat_map(|s| s.1.iter().map(|q| q.0)));
-            let (y0, y1) = range(series.iter().flat_map(|s| s.1.iter().map(|q| q.1)));
-            let mut chart = ChartBuilder::on(area)
-                .margin(10)
-                .x_label_area_size(35)
-                .y_label_area_size(60)
-                .build_cartesian_2d(x0..x1, y0..y1)
-                .map_err(|e| err(e.to_string()))?;
-            chart
-                .configure_mesh()
-                .x_desc("Z, mm")
-                .y_desc(ylabel)
-                .draw()
-                .map_err(|e| err(e.to_string()))?;
-            let mut seen: Vec<String> = Vec::new();
-            for (label, data, colour) in series {
-                let drawn = chart
-                    .draw_series(LineSeries::new(data, colour.stroke_width(2)))
-                    .map_err(|e| err(e.to_string()))?;
-                if !seen.contains(&label) {
-                    drawn
-                        .label(label.clone())
-                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
-                    seen.push(label);
-                }
-            }
-            chart
-                .configure_series_labels()
-                .border_style(BLACK)
-                .background_style(WHITE.mix(0.8))
-                .draw()
-                .map_err(|e| err(e.to_string()))?;
-        }
-        root.present().map_err(|e| err(e.to_string()))?;
-    }
-    Ok(svg.into_bytes())
+    panels_svg(
+        "mrr.svg",
+        &format!("{title}: removal rate and feed against Z (point A)"),
+        panels,
+    )
 }
 
 fn pts(p: &[Point]) -> Vec<(f64, f64)> {
     p.iter().map(|q| (q.x, q.y)).collect()
-}
-
-fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-        (a.min(v), b.max(v))
-    });
-    if !lo.is_finite() || !hi.is_finite() {
-        return (0.0, 1.0);
-    }
-    let pad = 0.05 * (hi - lo).max(1e-9);
-    (lo - pad, hi + pad)
 }

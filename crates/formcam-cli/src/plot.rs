@@ -8,13 +8,20 @@ use plotters::prelude::*;
 
 use crate::CliError;
 
-/// One line: legend label (empty: no legend entry), points, colour.
-type Series = (&'static str, Vec<(f64, f64)>, RGBColor);
+/// One line: legend label (empty, or one shown before in the panel: no new
+/// legend entry), points, colour.
+pub(crate) type Series = (String, Vec<(f64, f64)>, RGBColor);
 
 /// One panel: x label, y label, its lines.
-type Panel = (&'static str, &'static str, Vec<Series>);
+pub(crate) type Panel = (&'static str, &'static str, Vec<Series>);
 
-fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+/// Maps a plotting error to one naming the file.
+pub(crate) fn svg_err(file: &str) -> impl Fn(String) -> CliError + '_ {
+    move |e| CliError(format!("{file}: {e}"))
+}
+
+/// The range of `values` with 5 % padding; `(0, 1)` when there are none.
+pub(crate) fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
         (a.min(v), b.max(v))
     });
@@ -26,8 +33,8 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
 }
 
 /// Panels stacked in one SVG document; `file` names it in errors.
-fn panels_svg(file: &str, title: &str, panels: Vec<Panel>) -> Result<Vec<u8>, CliError> {
-    let err = |e: String| CliError(format!("{file}: {e}"));
+pub(crate) fn panels_svg(file: &str, title: &str, panels: Vec<Panel>) -> Result<Vec<u8>, CliError> {
+    let err = svg_err(file);
     let mut svg = String::new();
     {
         let root =
@@ -52,14 +59,16 @@ fn panels_svg(file: &str, title: &str, panels: Vec<Panel>) -> Result<Vec<u8>, Cl
                 .y_desc(ylabel)
                 .draw()
                 .map_err(|e| err(e.to_string()))?;
+            let mut shown: Vec<String> = Vec::new();
             for (label, data, color) in series {
                 let drawn = chart
                     .draw_series(LineSeries::new(data, color.stroke_width(2)))
                     .map_err(|e| err(e.to_string()))?;
-                if !label.is_empty() {
+                if !label.is_empty() && !shown.contains(&label) {
                     drawn
-                        .label(label)
+                        .label(label.clone())
                         .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+                    shown.push(label);
                 }
             }
             chart
@@ -80,12 +89,12 @@ pub fn layer_svg(title: &str, mandrel: &impl Meridian, layer: &Layer) -> Result<
     let pts = &layer.points;
     let mut radius: Vec<Series> = vec![
         (
-            "meridian r",
+            "meridian r".into(),
             pts.iter().map(|p| (p.z, p.r)).collect(),
             BLACK,
         ),
         (
-            "Clairaut C = r sin(alpha)",
+            "Clairaut C = r sin(alpha)".into(),
             pts.iter().map(|p| (p.z, p.c)).collect(),
             BLUE,
         ),
@@ -102,7 +111,7 @@ pub fn layer_svg(title: &str, mandrel: &impl Meridian, layer: &Layer) -> Result<
             } else {
                 ""
             };
-            radius.push((label, std::mem::take(&mut stretch), MAGENTA));
+            radius.push((label.into(), std::mem::take(&mut stretch), MAGENTA));
         }
     }
     if !stretch.is_empty() {
@@ -111,7 +120,7 @@ pub fn layer_svg(title: &str, mandrel: &impl Meridian, layer: &Layer) -> Result<
         } else {
             ""
         };
-        radius.push((label, stretch, MAGENTA));
+        radius.push((label.into(), stretch, MAGENTA));
     }
     let panels = vec![
         ("z, mm", "radius, mm", radius),
@@ -119,7 +128,7 @@ pub fn layer_svg(title: &str, mandrel: &impl Meridian, layer: &Layer) -> Result<
             "z, mm",
             "winding angle, deg",
             vec![(
-                "alpha",
+                "alpha".into(),
                 pts.iter().map(|p| (p.z, p.alpha.to_degrees())).collect(),
                 RED,
             )],
@@ -128,7 +137,7 @@ pub fn layer_svg(title: &str, mandrel: &impl Meridian, layer: &Layer) -> Result<
             "z, mm",
             "layer thickness, mm",
             vec![(
-                "two plies",
+                "two plies".into(),
                 pts.iter()
                     .zip(&layer.thickness)
                     .map(|(p, t)| (p.z, *t))
@@ -143,10 +152,11 @@ pub fn layer_svg(title: &str, mandrel: &impl Meridian, layer: &Layer) -> Result<
 /// The eye trajectory in the `Z x R` plane with the path, and `l(x)`, `u(x)`.
 pub fn eye_svg(title: &str, t: &EyeTrajectory) -> Result<Vec<u8>, CliError> {
     let pts = &t.points;
-    let mut lengths: Vec<Series> = vec![("l", pts.iter().map(|p| (p.x, p.l)).collect(), RED)];
+    let mut lengths: Vec<Series> =
+        vec![("l".into(), pts.iter().map(|p| (p.x, p.l)).collect(), RED)];
     if t.l_min.len() == pts.len() {
         let lm = pts.iter().zip(&t.l_min).map(|(p, l)| (p.x, *l)).collect();
-        lengths.push(("l_min (clearance)", lm, BLUE));
+        lengths.push(("l_min (clearance)".into(), lm, BLUE));
     }
     let panels = vec![
         (
@@ -154,12 +164,12 @@ pub fn eye_svg(title: &str, t: &EyeTrajectory) -> Result<Vec<u8>, CliError> {
             "R, mm",
             vec![
                 (
-                    "path (z, r)",
+                    "path (z, r)".into(),
                     pts.iter().map(|p| (p.z, p.r)).collect(),
                     BLACK,
                 ),
                 (
-                    "eye (Z, R)",
+                    "eye (Z, R)".into(),
                     pts.iter().map(|p| (p.eye_z, p.eye_r)).collect(),
                     RED,
                 ),
@@ -170,7 +180,7 @@ pub fn eye_svg(title: &str, t: &EyeTrajectory) -> Result<Vec<u8>, CliError> {
             "x (laid band length), mm",
             "pull speed u",
             vec![(
-                "u = d lambda / dx",
+                "u = d lambda / dx".into(),
                 pts.iter().map(|p| (p.x, p.u)).collect(),
                 GREEN,
             )],

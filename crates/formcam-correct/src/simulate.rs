@@ -246,10 +246,10 @@ impl Scenario {
         out
     }
 
-    /// The part made from a mould milled by `program`: the part's surface
-    /// points on the raster grid (`k * nx + i`, `i` along x).
-    fn part(&self, program: &str) -> Result<Vec<V3>, CorrectError> {
-        let (_, feed) = feed_nodes(program)?;
+    /// The part made from a mould milled along the program's `feed` nodes:
+    /// the part's surface points on the raster grid (`k * nx + i`, `i` along
+    /// x).
+    fn part(&self, feed: &[V3]) -> Result<Vec<V3>, CorrectError> {
         let (nx, ny) = self.raster();
         if feed.len() != nx * ny {
             return Err(CorrectError::Scenario(format!(
@@ -374,10 +374,10 @@ impl Scenario {
         (max, (sum / n.max(1) as f64).sqrt())
     }
 
-    /// Corrects `program` from `m`.
+    /// Corrects a program read by [`feed_nodes`] from `m`; returns its text.
     fn correct(
         &self,
-        program: &str,
+        (tp, feed): &(Toolpath, Vec<V3>),
         m: &Measurements,
         options: Options,
     ) -> Result<String, CorrectError> {
@@ -386,8 +386,7 @@ impl Scenario {
             smooth(&mut grid, self.noise);
         }
         let corrector = Corrector::new(&grid, options)?;
-        let (tp, feed) = feed_nodes(program)?;
-        let c = corrector.correct(&feed);
+        let c = corrector.correct(feed);
         let mut it = c.iter();
         let positions: Vec<V3> = tp
             .nodes
@@ -413,11 +412,12 @@ impl Scenario {
         let mut rounds = Vec::new();
         let check = 61;
         for k in 0..=self.iterations {
-            let part = self.part(&program)?;
+            let read = feed_nodes(&program)?;
+            let part = self.part(&read.1)?;
             let m = self.measure(&part, self.sections, self.points, &mut rng);
             let (true_max, true_rms) = self.true_error(&part, check);
             let next = if k < self.iterations {
-                Some(self.correct(&program, &m, self.options)?)
+                Some(self.correct(&read, &m, self.options)?)
             } else {
                 None
             };
@@ -443,7 +443,8 @@ impl Scenario {
     pub fn spacing_study(&self, section_counts: &[usize]) -> Result<Vec<SpacingRow>, CorrectError> {
         self.validate()?;
         let nominal = self.program();
-        let part0 = self.part(&nominal)?;
+        let read = feed_nodes(&nominal)?;
+        let part0 = self.part(&read.1)?;
         let mut rows = Vec::new();
         for &count in section_counts {
             if !(2..=10_000).contains(&count) {
@@ -463,8 +464,8 @@ impl Scenario {
                     interpolation,
                     ..self.options
                 };
-                let corrected = self.correct(&nominal, &m, opts)?;
-                let part = self.part(&corrected)?;
+                let corrected = self.correct(&read, &m, opts)?;
+                let part = self.part(&feed_nodes(&corrected)?.1)?;
                 let (max, rms) = self.true_error(&part, 61);
                 rows.push(SpacingRow {
                     sections: count,

@@ -341,13 +341,15 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
     }
     let program = source.write(&new_positions, &header)?;
 
+    let (max_deviation, rms_deviation) =
+        (measurements.max_deviation(), measurements.rms_deviation());
     let name = |p: &Path| p.display().to_string();
     let entry = json!({
         "measurements": name(&meas_path),
         "program": name(&prog_path),
         "output": name(&out_path),
-        "max_deviation_mm": measurements.max_deviation(),
-        "rms_deviation_mm": measurements.rms_deviation(),
+        "max_deviation_mm": max_deviation,
+        "rms_deviation_mm": rms_deviation,
         "max_displacement_mm": totals.max_displacement_mm,
         "nodes_corrected": totals.corrected,
     });
@@ -392,8 +394,8 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
         "nodes_rapid_unchanged": movable.iter().filter(|m| !**m).count(),
         "nodes_unknown": totals.unknown,
         "outside_lines": ranges(&outside_lines),
-        "max_deviation_mm": measurements.max_deviation(),
-        "rms_deviation_mm": measurements.rms_deviation(),
+        "max_deviation_mm": max_deviation,
+        "rms_deviation_mm": rms_deviation,
         "max_displacement_mm": totals.max_displacement_mm,
         "rms_displacement_mm": totals.rms_displacement_mm,
         "interpolation": options.interpolation.name(),
@@ -476,7 +478,7 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
         positions.len(),
         totals.corrected,
         totals.outside,
-        measurements.max_deviation(),
+        max_deviation,
         totals.max_displacement_mm
     ))
 }

@@ -221,3 +221,25 @@ fn a_rounding_breach_does_not_grow_along_a_chain_of_binding_rows() {
     );
     assert!(gl.total <= pw.total * (1.0 + 1e-6), "{gl:?} {pw:?}");
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+    /// The windows round the reversals reach the optimum of one cone program
+    /// over the whole program.
+    #[test]
+    fn the_windows_reach_the_optimum_of_the_whole_program(job in job()) {
+        let d = program(&job, 0.2);
+        let lim = limits();
+        let t_star = preliminary_times(&d, &lim, 0.004).unwrap();
+        let gl = global(&d, &t_star, &lim).unwrap();
+        let cone = global_by_cone(&d, &t_star, &lim).unwrap();
+        prop_assert!(check_timing(&d, &cone.times, &lim).is_empty());
+        prop_assert!(
+            (gl.total - cone.total).abs() <= 1e-6 * cone.total,
+            "{} blocks: windows {} s, one cone program {} s",
+            d.len() / 3,
+            gl.total,
+            cone.total
+        );
+    }
+}

@@ -465,6 +465,12 @@ impl WindingSpec {
             }
         };
         let turnaround = match self.turnaround.as_deref() {
+            Some(_) if !mandrel.is_tube() => {
+                return Err(WindingError::field(
+                    "winding.turnaround",
+                    "only for tubes (cylinder, cone); a vessel's pass turns at its polar openings",
+                ));
+            }
             None | Some("extension") => TubeTurn::Extension,
             Some("friction") if mandrel.is_tube() && !hoop => TubeTurn::Friction,
             Some("friction") => {

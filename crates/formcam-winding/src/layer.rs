@@ -635,7 +635,6 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
 
     let (mu_const, mu_max_abs) = match (method, &law) {
         (Method::Minimax, _) => (None, minimax_info.as_ref().map_or(0.0, |x| x.0)),
-        (Method::FrictionTurn, l) => (None, l.max_abs()),
         (_, MuLaw::Constant(mu)) => (Some(*mu), mu.abs()),
         (_, l) => (None, l.max_abs()),
     };

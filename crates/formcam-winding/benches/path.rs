@@ -1,5 +1,6 @@
 //! Speed of the path engine: a geodesic pass sampled at 1e5 points, a
-//! `mu = "auto"` pass, and the minimax search on a concave meridian.
+//! `mu = "auto"` pass, the minimax search on a concave meridian and on a shell
+//! whose ends flare, and a tube's layer turned by friction.
 
 #![allow(clippy::expect_used, missing_docs)]
 
@@ -7,8 +8,10 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use formcam_geom::{DomeShape, Jet, Meridian, Vessel};
-use formcam_winding::{MuLaw, TraceOptions, minimax, shoot, trace};
+use formcam_geom::{Cylinder, DomeShape, Jet, Meridian, Vessel};
+use formcam_winding::{
+    Ends, LayerSpec, MuLaw, Slippage, TraceOptions, TubeTurn, minimax, plan_layer, shoot, trace,
+};
 
 fn vessel(rp2: f64) -> Vessel {
     Vessel::new(
@@ -38,6 +41,24 @@ impl Meridian for Waist {
     }
 }
 
+/// A waisted shell whose ends flare (r' = -0.1 and +0.1 at the ends).
+struct Flare;
+
+impl Meridian for Flare {
+    fn z_range(&self) -> (f64, f64) {
+        (0.0, 300.0)
+    }
+    fn eval(&self, z: f64) -> Jet {
+        let k = PI / 300.0;
+        let d = z - 150.0;
+        Jet {
+            r: 40.0 + 30.0 * (k * z).cos().powi(2) + d * d / 3000.0,
+            dr: -30.0 * k * (2.0 * k * z).sin() + 2.0 * d / 3000.0,
+            d2r: -60.0 * k * k * (2.0 * k * z).cos() + 2.0 / 3000.0,
+        }
+    }
+}
+
 fn benches(c: &mut Criterion) {
     let v = vessel(30.0);
     let law = MuLaw::Constant(0.0);
@@ -59,6 +80,22 @@ fn benches(c: &mut Criterion) {
     c.bench_function("minimax on a concave meridian, 4000 nodes", |b| {
         b.iter(|| black_box(minimax(&Waist, 4000, 3.0).expect("minimax")))
     });
+    c.bench_function("minimax on a shell whose ends flare, 4000 nodes", |b| {
+        b.iter(|| black_box(minimax(&Flare, 4000, 3.0).expect("minimax")))
+    });
+    let cyl = Cylinder::new(50.0, 600.0).expect("cylinder");
+    let spec = LayerSpec {
+        slippage: Slippage::Constant(0.2),
+        ends: Ends::Tube {
+            winding_angle: 40f64.to_radians(),
+        },
+        turnaround: TubeTurn::Friction,
+        ..LayerSpec::default()
+    };
+    c.bench_function(
+        "tube layer turned by friction (zones, pass, pattern), 2001 samples",
+        |b| b.iter(|| black_box(plan_layer(&cyl, &spec).expect("layer"))),
+    );
 }
 
 criterion_group!(name = g; config = Criterion::default().sample_size(20); targets = benches);

@@ -7,7 +7,7 @@
 use formcam_geom::{Cone, Cylinder, DomeShape, GeomError, Jet, Meridian, Tabulated, Vessel};
 use serde::Deserialize;
 
-use crate::{Ends, LayerSpec, MuSegment, Slippage, WindingError};
+use crate::{Ends, LayerSpec, MuSegment, Slippage, TubeTurn, WindingError};
 
 /// `[mandrel]`.
 #[derive(Debug, Clone, Default, Deserialize)]
@@ -90,6 +90,9 @@ pub struct WindingSpec {
     pub mu_limit: Option<f64>,
     /// Points written per pass (default 2001).
     pub samples: Option<usize>,
+    /// Tubes: `extension` (default: the band turns beyond the ends) or `friction`
+    /// (it turns on the tube, held by `mu`).
+    pub turnaround: Option<String>,
     /// Multi-layer jobs (`[[layer]]`): `helical` (default), `hoop` (tubes: the
     /// band advances one width per turn) or `skip` (the mandrel turns alone).
     pub kind: Option<String>,
@@ -461,7 +464,36 @@ impl WindingSpec {
                 }
             }
         };
-        let default_dwell = if mandrel.is_tube() { 180.0 } else { 0.0 };
+        let turnaround = match self.turnaround.as_deref() {
+            Some(_) if !mandrel.is_tube() => {
+                return Err(WindingError::field(
+                    "winding.turnaround",
+                    "only for tubes (cylinder, cone); a vessel's pass turns at its polar openings",
+                ));
+            }
+            None | Some("extension") => TubeTurn::Extension,
+            Some("friction") if mandrel.is_tube() && !hoop => TubeTurn::Friction,
+            Some("friction") => {
+                return Err(WindingError::field(
+                    "winding.turnaround",
+                    "\"friction\" is for helical layers on tubes (cylinder, cone)",
+                ));
+            }
+            Some(other) => {
+                return Err(WindingError::field(
+                    "winding.turnaround",
+                    format!(
+                        "\"{other}\" is not a turn-around; allowed: \"extension\" (beyond the tube's \
+                         ends), \"friction\" (on the tube, held by mu)"
+                    ),
+                ));
+            }
+        };
+        let default_dwell = if mandrel.is_tube() && turnaround == TubeTurn::Extension {
+            180.0
+        } else {
+            0.0
+        };
         let defaults = LayerSpec::default();
         Ok(LayerSpec {
             slippage,
@@ -492,6 +524,7 @@ impl WindingSpec {
                 None => defaults.samples,
             },
             minimax_nodes: defaults.minimax_nodes,
+            turnaround,
         })
     }
 }

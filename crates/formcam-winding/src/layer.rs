@@ -6,6 +6,7 @@ use formcam_geom::Meridian;
 use serde::Serialize;
 
 use crate::circuit::{PassPath, Turnaround};
+use crate::friction::friction_turns;
 use crate::minimax::{bridging_limit, minimax};
 use crate::path::{PassEnd, TANGENT_ALPHA_TOL, TraceOptions, trace};
 use crate::pattern::{Pattern, PatternRequest, choose_pattern};
@@ -47,6 +48,19 @@ pub enum Ends {
     },
 }
 
+/// How a tube's pass turns at the tube's ends.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TubeTurn {
+    /// The pass runs off the tube's ends and the machine turns the band on the
+    /// tube's extension (a dwell of the mandrel).
+    #[default]
+    Extension,
+    /// The pass turns on the tube itself, held by friction: the slippage
+    /// ([`Slippage::Constant`]) is the `|mu|` of the turns, the pass is geodesic
+    /// between them.
+    Friction,
+}
+
 /// Everything that defines a layer besides the mandrel.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LayerSpec {
@@ -72,6 +86,8 @@ pub struct LayerSpec {
     pub samples: usize,
     /// Grid intervals of the minimax search.
     pub minimax_nodes: usize,
+    /// Tubes: where the pass turns.
+    pub turnaround: TubeTurn,
 }
 
 impl Default for LayerSpec {
@@ -91,6 +107,7 @@ impl Default for LayerSpec {
             mu_limit: 0.6,
             samples: 2001,
             minimax_nodes: 4000,
+            turnaround: TubeTurn::Extension,
         }
     }
 }
@@ -107,6 +124,8 @@ pub enum Method {
     Shooting,
     /// The minimax direct search of eqs. 5–6.
     Minimax,
+    /// A tube's geodesic with turn-arounds held by friction at both ends.
+    FrictionTurn,
 }
 
 /// What one pass is.
@@ -118,6 +137,10 @@ pub struct PassSummary {
     pub mu: Option<f64>,
     /// Worst `|mu|` along the pass.
     pub mu_max_abs: f64,
+    /// Minimax: the least worst-case `|mu|` of any path between the openings (the
+    /// pass is laid at it, or a hair above where only a path grazing a
+    /// turn-around would reach it).
+    pub mu_optimal: Option<f64>,
     /// Where the pass starts.
     pub start: PassEnd,
     /// Where the pass ends.
@@ -258,6 +281,20 @@ fn check_spec(spec: &LayerSpec, (za, zb): (f64, f64)) -> Result<(), WindingError
             }
         }
     }
+    if spec.turnaround == TubeTurn::Friction {
+        if !matches!(spec.ends, Ends::Tube { .. }) {
+            return Err(WindingError::field(
+                "winding.turnaround",
+                "\"friction\" turns a tube's pass on the tube; a mandrel with polar openings turns there",
+            ));
+        }
+        if !matches!(spec.slippage, Slippage::Constant(m) if m > 0.0) {
+            return Err(WindingError::field(
+                "winding.mu",
+                "with turnaround = \"friction\" give the slippage the turns use, a number > 0",
+            ));
+        }
+    }
     if let Ends::Tube { winding_angle } = spec.ends
         && !(winding_angle > 0.0 && winding_angle < FRAC_PI_2)
     {
@@ -309,12 +346,17 @@ fn bridging_margin(m: &impl Meridian, pts: &[PathPoint]) -> (Option<f64>, Option
 pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, WindingError> {
     check_spec(spec, m.z_range())?;
     let tube = matches!(spec.ends, Ends::Tube { .. });
+    let friction = spec.turnaround == TubeTurn::Friction;
     let (za, zb) = m.z_range();
     let mut warnings = Vec::new();
     let samples = spec.samples.max(2);
     let mut shot = None;
     let mut minimax_info = None;
     let (mut method, law, alpha0) = match (&spec.slippage, spec.ends) {
+        (Slippage::Constant(mu), Ends::Tube { winding_angle }) if friction => {
+            let turns = friction_turns(m, *mu, winding_angle, spec.mu_limit)?;
+            (Method::FrictionTurn, turns.law, FRAC_PI_2)
+        }
         (Slippage::Auto | Slippage::Minimax, Ends::Tube { .. }) => {
             return Err(WindingError::field(
                 "winding.mu",
@@ -384,6 +426,14 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
     if method != Method::Minimax {
         let tr = match &shot {
             Some(s) => s.trace.clone(),
+            None if friction => {
+                // A tighter tolerance than a plain pass: the far turn must land on
+                // the tube's end, which the error gathered over the pass would move.
+                let mut opts = TraceOptions::default();
+                opts.tol.rtol = 3e-15;
+                opts.tol.atol = 3e-15;
+                trace(m, &law, alpha0, &opts)?
+            }
             None => trace(m, &law, alpha0, &TraceOptions::default())?,
         };
         dense = tr.sample(m, &law, samples.max(DENSE));
@@ -435,13 +485,24 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         pass_path = PassPath::Points(dense.clone());
         start = PassEnd::TurnAround { z: za };
         end = PassEnd::TurnAround { z: zb };
-        minimax_info = Some((mm.mu_max, mm.bridging_active));
+        minimax_info = Some((mm.mu_path, mm.mu_max, mm.bridging_active));
         shot = None;
     }
     let last = *points
         .last()
         .ok_or_else(|| WindingError::field("winding.samples", "no points"))?;
     match (spec.ends, end) {
+        (Ends::Tube { .. }, PassEnd::TurnAround { z })
+            if friction && (z - zb).abs() <= FAR_TOL_MM => {}
+        (Ends::Tube { .. }, PassEnd::TurnAround { z }) if friction => {
+            return Err(WindingError::infeasible(
+                "winding.mu",
+                format!(
+                    "the pass with friction turn-arounds turns at z = {z:.6} mm instead of the tube's \
+                     end ({zb:.6} mm)"
+                ),
+            ));
+        }
         (Ends::Tube { .. }, PassEnd::TurnAround { z }) => {
             return Err(WindingError::infeasible(
                 "winding.winding_angle_deg",
@@ -497,11 +558,22 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
     let turn_pass = surface_turn + boss;
     let turn_circuit = 2.0 * turn_pass;
 
-    // Equator and pattern.
-    let eq = dense
+    // Equator and pattern: the widest parallel, or, where the pass turns on it
+    // (a tube turned by friction, a shell whose ends flare), the parallel the
+    // bands cross most widely (largest r cos(alpha)), which the pattern must cover.
+    let widest = dense
         .iter()
         .copied()
         .fold(dense[0], |a, p| if p.r > a.r { p } else { a });
+    let eq = if widest.alpha >= FRAC_PI_2 - TANGENT_ALPHA_TOL {
+        let across = |p: &PathPoint| p.r * p.alpha.cos();
+        dense
+            .iter()
+            .copied()
+            .fold(dense[0], |a, p| if across(&p) > across(&a) { p } else { a })
+    } else {
+        widest
+    };
     let pattern = choose_pattern(&PatternRequest {
         band_width: spec.band_width,
         overlap: spec.overlap,
@@ -528,22 +600,30 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         2.0 * spec.band_thickness * n * spec.band_width / (TAU * r * alpha.cos().max(1e-12))
     };
     // The cap of each end: the thickness where the path first (from that end) is a
-    // band width above its turn radius, held constant towards the turn.
+    // band width above its turn radius, held constant towards the turn; where the
+    // meridian does not narrow towards the end (a tube turned by friction, a
+    // flaring end), where the path is a band width from the turn along the meridian.
     let full = |p: &PathPoint| t_at(p.r, p.alpha);
-    let cap_of = |mut it: Box<dyn Iterator<Item = &PathPoint> + '_>| {
-        let turn = it.next().map_or(0.0, |p| p.c);
-        let reach = (turn + spec.band_width).min(eq.r);
-        it.find(|p| p.r >= reach).map(|p| (p.z, full(p)))
+    let cap_of = |mut it: Box<dyn Iterator<Item = &PathPoint> + '_>, narrows: bool| {
+        let first = it.next().copied()?;
+        if narrows {
+            let reach = (first.c + spec.band_width).min(eq.r);
+            it.find(|p| p.r >= reach).map(|p| (p.z, full(p)))
+        } else {
+            it.find(|p| (p.z - first.z).hypot(p.r - first.r) >= spec.band_width)
+                .map(|p| (p.z, full(p)))
+        }
     };
-    let start_cap = if tube {
-        None
+    let turns_on_mandrel = !tube || friction;
+    let start_cap = if turns_on_mandrel {
+        cap_of(Box::new(dense.iter()), m.dr(za) > 0.0)
     } else {
-        cap_of(Box::new(dense.iter()))
+        None
     };
-    let end_cap = if tube {
-        None
+    let end_cap = if turns_on_mandrel {
+        cap_of(Box::new(dense.iter().rev()), m.dr(zb) < 0.0)
     } else {
-        cap_of(Box::new(dense.iter().rev()))
+        None
     };
     let thick = |p: &PathPoint| match (start_cap, end_cap) {
         (Some((z, t)), _) if p.z < z => t,
@@ -563,6 +643,7 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         method,
         mu: mu_const,
         mu_max_abs,
+        mu_optimal: minimax_info.as_ref().map(|x| x.1),
         start,
         end,
         length_mm: last.s,
@@ -570,7 +651,7 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         turn_angle_boss_rad: boss,
         boundary_residual_mm: shot.as_ref().map(|s| s.residual_mm),
         shooting_evaluations: shot.as_ref().map(|s| s.evaluations),
-        bridging_active: minimax_info.map(|x| x.1).unwrap_or_default(),
+        bridging_active: minimax_info.map(|x| x.2).unwrap_or_default(),
         bridging_margin_mm,
     };
     let report = LayerReport {

@@ -4,12 +4,14 @@
 //!
 //! * [`trace`] integrates a pass in path length through its turn-arounds;
 //! * [`shoot`] finds the constant slippage for `mu = "auto"`;
-//! * [`minimax`] solves the concave-meridian problem (eq. 5–6);
+//! * [`minimax`] solves the concave-meridian problem (eq. 5–6), flaring ends included;
+//! * [`friction_turns`] turns a tube's pass on the tube, held by friction;
 //! * [`plan_layer`] turns a [`LayerSpec`] into a [`Layer`]: pass, pattern, report.
 
 pub mod circuit;
 mod error;
 pub mod eye;
+pub mod friction;
 pub mod job;
 mod layer;
 pub mod minimax;
@@ -21,7 +23,10 @@ mod slippage;
 
 pub use circuit::{Circuit, CircuitPoint, PassPath, Turnaround};
 pub use error::WindingError;
-pub use layer::{Ends, Layer, LayerReport, LayerSpec, Method, PassSummary, Slippage, plan_layer};
+pub use friction::{FrictionTurns, friction_turns};
+pub use layer::{
+    Ends, Layer, LayerReport, LayerSpec, Method, PassSummary, Slippage, TubeTurn, plan_layer,
+};
 pub use minimax::{MinimaxPath, minimax};
 pub use path::{PassEnd, PathPoint, Trace, TraceOptions, trace};
 pub use pattern::{Pattern, PatternRequest, choose_pattern};

@@ -34,8 +34,13 @@ pub struct MinimaxPath {
     pub c_bridge: Vec<f64>,
     /// Slippage on each interval `[z_i, z_i+1]` (the last node repeats the last interval).
     pub mu: Vec<f64>,
-    /// The optimal worst-case slippage `max |mu|` (the bisection's smallest feasible bound).
+    /// The optimal worst-case slippage `max |mu|` (the bisection's smallest feasible
+    /// bound): the least worst `|mu|` of any path, an infimum where only a path
+    /// grazing a turn-around would reach it.
     pub mu_max: f64,
+    /// The worst-case slippage the returned path is laid at (`mu_max` and a hair
+    /// of slack; up to 1 % more where the optimum is such an infimum).
+    pub mu_path: f64,
     /// `z` intervals where the path lies on the bridging limit (within 1e-6 of the radius).
     pub bridging_active: Vec<(f64, f64)>,
 }
@@ -153,6 +158,12 @@ impl Grid {
 
 /// Solves eqs. 5–6 on `nodes` intervals of `z`; `mu_limit` is the largest slippage
 /// the band can hold (the search gives up beyond it).
+///
+/// The turn-arounds need no narrowing meridian: at `C = r` eq. 3 reads
+/// `C' = mu`, and `C <= r` on leaving the start and on arriving at the end
+/// needs `mu <= r'(z_start)` and `mu >= r'(z_end)`. Where the meridian widens
+/// towards an end (a waisted shell whose ends flare) friction holds the turn,
+/// `|mu| >= |r'|` there, and the search starts from that bound.
 pub fn minimax<M: Meridian>(
     m: &M,
     nodes: usize,
@@ -160,22 +171,28 @@ pub fn minimax<M: Meridian>(
 ) -> Result<MinimaxPath, WindingError> {
     let g = Grid::new(m, nodes.max(16));
     let n = g.n();
-    let (za, zb) = m.z_range();
-    let (s0, s1) = (g.node[0].dr, g.node[n].dr);
-    if !(s0 > 0.0 && s1 < 0.0) {
+    let m_end = turn_bound(&g);
+    if m_end > mu_limit {
+        let (za, zb) = m.z_range();
+        let (z, slope) = if -g.node[0].dr >= g.node[n].dr {
+            (za, g.node[0].dr)
+        } else {
+            (zb, g.node[n].dr)
+        };
         return Err(WindingError::infeasible(
-            "winding.mu",
+            "winding.mu_limit",
             format!(
-                "the path must turn at both ends of the meridian, which needs it to narrow towards \
-                 them: r' > 0 at z = {za:.3} mm and r' < 0 at z = {zb:.3} mm (got {s0:.4} and {s1:.4})"
+                "the meridian widens towards its end at z = {z:.3} mm (r' = {slope:.4}), so friction \
+                 must hold the turn-around there: |mu| >= {m_end:.4}, above mu_limit = {mu_limit}"
             ),
         ));
     }
-    let mut hi_m = 1e-3f64.min(mu_limit);
-    while !g.feasible(hi_m) {
+    let feasible = |mu: f64| mu >= m_end && g.feasible(mu);
+    let mut hi_m = 1e-3f64.min(mu_limit).max(m_end);
+    while !feasible(hi_m) {
         hi_m *= 2.0;
         if hi_m > mu_limit {
-            if g.feasible(mu_limit) {
+            if feasible(mu_limit) {
                 hi_m = mu_limit;
                 break;
             }
@@ -194,16 +211,14 @@ pub fn minimax<M: Meridian>(
             ));
         }
     }
-    let mut lo_m = if g.feasible(0.0) {
+    let mut lo_m = m_end;
+    if feasible(0.0) {
         hi_m = 0.0;
-        0.0
-    } else {
-        0.0
-    };
+    }
     if hi_m > 0.0 {
         for _ in 0..60 {
             let mid = 0.5 * (lo_m + hi_m);
-            if g.feasible(mid) {
+            if feasible(mid) {
                 hi_m = mid;
             } else {
                 lo_m = mid;
@@ -214,63 +229,34 @@ pub fn minimax<M: Meridian>(
             }
         }
     }
-    let _ = lo_m;
-    // Build the path with a hair of slack so both tubes are non-degenerate.
-    let m_opt = if hi_m > 0.0 { hi_m * (1.0 + 1e-7) } else { 0.0 };
-    let (flo, fhi) = g.sweep(m_opt, true).ok_or_else(|| {
-        WindingError::infeasible(
-            "winding.mu",
-            "the minimax path could not be rebuilt (grid too coarse?)",
-        )
-    })?;
-    let (blo, bhi) = g.sweep(m_opt, false).ok_or_else(|| {
-        WindingError::infeasible(
-            "winding.mu",
-            "the minimax path could not be rebuilt (grid too coarse?)",
-        )
-    })?;
-    let mut c = vec![g.node[0].r; n + 1];
-    for i in 0..n {
-        let up = g.step(i, c[i], m_opt, true);
-        let dn = g.step(i, c[i], -m_opt, true);
-        let lo = dn.max(flo[i + 1]).max(blo[i + 1]);
-        let hi = up.min(fhi[i + 1]).min(bhi[i + 1]);
-        c[i + 1] = if lo <= hi {
-            c[i].clamp(lo, hi)
-        } else {
-            0.5 * (lo + hi)
-        };
+    // Build the path with a hair of slack so both tubes are non-degenerate. Where
+    // that path would touch a turn-around inside the pass (C = r: a hoop, with an
+    // infinite turn angle), the optimum is an infimum no path attains: the path is
+    // then laid a little above it, kept off C = r (see [`build`]).
+    let mut built = None;
+    for (slack, lift) in builds() {
+        let m_path = hi_m * (1.0 + slack);
+        let c = build(&g, m_path, lift)?;
+        if clear_of_turns(&g, &c) && (lift.is_none() || worst_mu(&g, &c) <= m_path * (1.0 + 1e-3)) {
+            built = Some((c, m_path));
+            break;
+        }
     }
-    // A turn-around inside the pass (C = r) would wind hoops forever: not a pass.
-    if let Some(i) = (1..n).find(|&i| g.node[i].r - c[i] <= 1e-9 * g.node[i].r) {
+    let Some((c, m_path)) = built else {
+        let c = build(&g, hi_m * (1.0 + 1e-7), None)?;
+        let z_touch = (1..n)
+            .find(|&i| !clear_at(&g, &c, i))
+            .map_or(g.z[n / 2], |i| g.z[i]);
         return Err(WindingError::infeasible(
             "winding.mu",
             format!(
-                "the least-slippage path touches a turn-around inside the mandrel at z = {:.3} mm \
-                 (C = r): the band cannot run from one polar opening to the other on this meridian",
-                g.z[i]
+                "the least-slippage path touches a turn-around inside the mandrel at z = {z_touch:.3} mm \
+                 (C = r): the band cannot run from one polar opening to the other on this meridian \
+                 (a meridian that neither narrows nor widens towards an end has no least slippage)"
             ),
         ));
-    }
-    // Slippage per interval: dC over the integral of B (Simpson), which stays
-    // accurate where B vanishes at a touch of the bridging limit.
-    let mut mu: Vec<f64> = (0..n)
-        .map(|i| {
-            let cm = 0.5 * (c[i] + c[i + 1]);
-            let bint = (b_factor(&g.node[i], c[i])
-                + 4.0 * b_factor(&g.mid[i], cm)
-                + b_factor(&g.node[i + 1], c[i + 1]))
-                / 6.0;
-            let dc = (c[i + 1] - c[i]) / (g.z[i + 1] - g.z[i]);
-            if bint > 0.0 {
-                dc / bint
-            } else if dc == 0.0 {
-                0.0
-            } else {
-                f64::INFINITY.copysign(dc)
-            }
-        })
-        .collect();
+    };
+    let mut mu = interval_mu(&g, &c);
     mu.push(*mu.last().unwrap_or(&0.0));
     // The optimum is the smallest feasible worst-case slippage of the bisection.
     let mu_max = hi_m;
@@ -298,8 +284,103 @@ pub fn minimax<M: Meridian>(
         c_bridge: g.cb,
         mu,
         mu_max,
+        mu_path: m_path,
         bridging_active,
     })
+}
+
+/// The least `|mu|` the two turn-arounds need: `-r'` at the start and `r'` at the
+/// end where the meridian widens towards them (0 where it narrows).
+fn turn_bound(g: &Grid) -> f64 {
+    (-g.node[0].dr).max(g.node[g.n()].dr).max(0.0)
+}
+
+/// The builds tried in turn: relative slack above the optimum, and where the
+/// path is held ([`build`]). The first is the plain build (geodesic wherever the
+/// tubes allow); the others lay the path a little above an optimum that only a
+/// path grazing a turn-around would reach, nearer the optimum first.
+fn builds() -> impl Iterator<Item = (f64, Option<f64>)> {
+    let lowered = [1e-6, 1e-5, 1e-4, 1e-3, 1e-2]
+        .into_iter()
+        .flat_map(|slack| [0.5, 0.2, 0.05, 0.0].map(|lift| (slack, Some(lift))));
+    std::iter::once((1e-7, None)).chain(lowered)
+}
+
+/// The path inside the forward and backward tubes at worst-case slippage `mu`:
+/// each step as close to the geodesic (`C' = 0`) as the tubes and the one-step
+/// reach `C' in [-mu B, mu B]` allow. With `lift = Some(t)` the geodesic is
+/// capped at `t` of the way from the lowest path of the tubes up to `r`, so that
+/// where the meridian narrows under the path (an end that flares) it descends
+/// at `|mu|` early instead of riding `C = r` (a hoop); `t = 0` is the lowest path.
+fn build(g: &Grid, mu: f64, lift: Option<f64>) -> Result<Vec<f64>, WindingError> {
+    let rebuild = || {
+        WindingError::infeasible(
+            "winding.mu",
+            "the minimax path could not be rebuilt (grid too coarse?)",
+        )
+    };
+    let n = g.n();
+    let (flo, fhi) = g.sweep(mu, true).ok_or_else(rebuild)?;
+    let (blo, bhi) = g.sweep(mu, false).ok_or_else(rebuild)?;
+    let mut c = vec![g.node[0].r; n + 1];
+    for i in 0..n {
+        let up = g.step(i, c[i], mu, true);
+        let dn = g.step(i, c[i], -mu, true);
+        let floor = flo[i + 1].max(blo[i + 1]);
+        let lo = dn.max(floor);
+        let hi = up.min(fhi[i + 1]).min(bhi[i + 1]);
+        let target = match lift {
+            Some(t) if i + 1 < n => c[i].min(floor + t * (g.node[i + 1].r - floor)),
+            _ => c[i],
+        };
+        c[i + 1] = if lo <= hi {
+            target.clamp(lo, hi)
+        } else {
+            0.5 * (lo + hi)
+        };
+    }
+    Ok(c)
+}
+
+/// Slippage on each interval of the path: `dC` over the integral of `B`
+/// (Simpson), which stays accurate where `B` vanishes at a touch of the
+/// bridging limit.
+fn interval_mu(g: &Grid, c: &[f64]) -> Vec<f64> {
+    (0..g.n())
+        .map(|i| {
+            let cm = 0.5 * (c[i] + c[i + 1]);
+            let bint = (b_factor(&g.node[i], c[i])
+                + 4.0 * b_factor(&g.mid[i], cm)
+                + b_factor(&g.node[i + 1], c[i + 1]))
+                / 6.0;
+            let dc = (c[i + 1] - c[i]) / (g.z[i + 1] - g.z[i]);
+            if bint > 0.0 {
+                dc / bint
+            } else if dc == 0.0 {
+                0.0
+            } else {
+                f64::INFINITY.copysign(dc)
+            }
+        })
+        .collect()
+}
+
+/// Worst `|mu|` of the path.
+fn worst_mu(g: &Grid, c: &[f64]) -> f64 {
+    interval_mu(g, c).iter().fold(0.0, |a, m| a.max(m.abs()))
+}
+
+/// Whether node `i` keeps off the turn-around: `r - C` at least 1e-6 of the
+/// distance to the nearer end (a pass leaves its turns at a finite angle).
+fn clear_at(g: &Grid, c: &[f64], i: usize) -> bool {
+    let (za, zb) = (g.z[0], g.z[g.n()]);
+    let gap = g.node[i].r - c[i];
+    gap > 0.0 && gap >= 1e-6 * (g.z[i] - za).min(zb - g.z[i])
+}
+
+/// Whether the path touches `C = r` nowhere inside the pass.
+fn clear_of_turns(g: &Grid, c: &[f64]) -> bool {
+    (1..g.n()).all(|i| clear_at(g, c, i))
 }
 
 impl MinimaxPath {

@@ -39,3 +39,48 @@ impl Meridian for Waist {
         }
     }
 }
+
+/// A waisted shell whose ends flare: `r = 40 + 30 cos^2(pi z / L) + (z - L/2)^2 / 3000`
+/// (r' = -0.1 at z = 0 and +0.1 at z = L, steepest near the quarter points).
+pub struct Flare {
+    /// Length of the mandrel, mm.
+    pub len: f64,
+}
+
+impl Meridian for Flare {
+    fn z_range(&self) -> (f64, f64) {
+        (0.0, self.len)
+    }
+    fn eval(&self, z: f64) -> Jet {
+        let k = PI / self.len;
+        let b = 1.0 / 3000.0;
+        let d = z - 0.5 * self.len;
+        Jet {
+            r: 40.0 + 30.0 * (k * z).cos().powi(2) + b * d * d,
+            dr: -30.0 * k * (2.0 * k * z).sin() + 2.0 * b * d,
+            d2r: -60.0 * k * k * (2.0 * k * z).cos() + 2.0 * b,
+        }
+    }
+}
+
+/// A parabolic waist whose ends flare: `r = 50 + a (z - L/2)^2`.
+pub struct Parabola {
+    /// Length of the mandrel, mm.
+    pub len: f64,
+    /// Curvature coefficient `a`, 1/mm.
+    pub a: f64,
+}
+
+impl Meridian for Parabola {
+    fn z_range(&self) -> (f64, f64) {
+        (0.0, self.len)
+    }
+    fn eval(&self, z: f64) -> Jet {
+        let d = z - 0.5 * self.len;
+        Jet {
+            r: 50.0 + self.a * d * d,
+            dr: 2.0 * self.a * d,
+            d2r: 2.0 * self.a,
+        }
+    }
+}

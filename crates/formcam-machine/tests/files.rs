@@ -198,7 +198,12 @@ fn the_spindle_turns_modulo_by_default_and_modulo_is_checked() {
     assert!(with_spindle("").unwrap().axes[0].modulo);
     assert!(!with_spindle("modulo = false").unwrap().axes[0].modulo);
     // A spindle with limits is not modulo by default, and cannot be.
-    assert!(!with_spindle("min_deg = -720.0\nmax_deg = 720.0").unwrap().axes[0].modulo);
+    assert!(
+        !with_spindle("min_deg = -720.0\nmax_deg = 720.0")
+            .unwrap()
+            .axes[0]
+            .modulo
+    );
     let e = with_spindle("max_deg = 720.0\nmodulo = true")
         .unwrap_err()
         .to_string();

@@ -12,7 +12,10 @@ use formcam_motion::{
     AxisLimits, Deviation, Timing, Tolerance, check_acceleration, check_timing, deltas, fit_blocks,
     global, pairwise, preliminary_times, with_acceleration,
 };
-use formcam_nc::{AxisSpec, Block, Dialect, Feed, Program, Template, write, write_template};
+use formcam_nc::{
+    AxisSpec, Block, Dialect, Feed, ModuloStyle, Program, Template, keep_within_turns, write,
+    write_template,
+};
 use serde::Deserialize;
 use serde_json::json;
 
@@ -308,7 +311,9 @@ pub fn write_program(
         .axes
         .iter()
         .map(|a| {
-            if a.is_rotary() {
+            if a.modulo {
+                AxisSpec::rotary_modulo(a.name.clone())
+            } else if a.is_rotary() {
                 AxisSpec::rotary(a.name.clone())
             } else {
                 AxisSpec::linear(a.name.clone())
@@ -389,10 +394,11 @@ pub fn write_program(
                     })
                     .fold(tau, f64::max);
                 transitions += t;
-                program.blocks.push(
-                    Block::linear(start.clone(), Feed::InverseTime(t))
-                        .with_comment(l.label.clone()),
-                );
+                let mut b = Block::linear(start.clone(), Feed::InverseTime(t))
+                    .with_comment(l.label.clone());
+                // Modulo axes are re-zeroed between layers.
+                b.rezero = true;
+                program.blocks.push(b);
             }
         }
         for (target, t, t_star, mu) in &l.blocks {
@@ -403,11 +409,12 @@ pub fn write_program(
                 let _ = write!(csv, ",{v}");
             }
             let _ = writeln!(csv, ",{},{t_star},{mu}", li + 1);
-            let block = Block::linear(target, Feed::InverseTime(*t));
-            program.blocks.push(match pending.take() {
-                Some(label) => block.with_comment(label),
-                None => block,
-            });
+            let mut block = Block::linear(target, Feed::InverseTime(*t));
+            if let Some(label) = pending.take() {
+                block = block.with_comment(label);
+                block.rezero = true;
+            }
+            program.blocks.push(block);
         }
         here_now = program.blocks.last().map(|b| b.target.clone());
     }
@@ -443,6 +450,9 @@ pub fn write_program(
         (None, d) => {
             let dialect = Dialect::from_name(d.as_deref().unwrap_or("sinumerik-840d"))
                 .map_err(|e| here(format!("post.dialect: {e}")))?;
+            // Modulo axes within 100 turns: re-zeroed, or modulo with directions.
+            let program = keep_within_turns(&program, ModuloStyle::of(dialect))
+                .map_err(|e| here(format!("post: {e}")))?;
             write(&program, dialect, &mut text).map_err(|e| here(format!("post: {e}")))?;
             dialect.extension().to_string()
         }

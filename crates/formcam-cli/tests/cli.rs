@@ -682,3 +682,55 @@ fn a_one_way_hoop_lays_one_ply() {
     assert!((to - 0.5 * tb).abs() < 1e-12, "{to} vs {tb}");
     assert!(o["time_s"].as_f64().unwrap() < b["time_s"].as_f64().unwrap());
 }
+
+/// The largest |value| of the spindle's words (`A..`, `A=ACP(..)`, `A=ACN(..)`).
+fn largest_spindle_angle(program: &str) -> f64 {
+    program
+        .lines()
+        .filter(|l| !l.starts_with(';') && !l.starts_with('('))
+        .flat_map(|l| l.split(' '))
+        .filter_map(|w| {
+            w.strip_prefix("A=ACP(")
+                .or_else(|| w.strip_prefix("A=ACN("))
+                .map(|v| v.trim_end_matches(')'))
+                .or_else(|| w.strip_prefix('A'))
+        })
+        .map(|v| v.parse::<f64>().unwrap().abs())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn the_spindle_stays_within_100_turns() {
+    // FiberPath's tube wound the spindle to A-291582.1534 on Marlin: now
+    // re-zeroed by G92 between layers and before it would pass 100 turns.
+    let out = scratch("spindle-wind").join("out");
+    let st = formcam()
+        .arg("wind")
+        .arg(examples().join("tube-fiberpath.wind"))
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    let program = std::fs::read_to_string(out.join("program.gcode")).unwrap();
+    let largest = largest_spindle_angle(&program);
+    assert!(largest <= 36000.0, "largest |A| {largest}");
+    assert!(program.lines().filter(|l| l.starts_with("G92 A")).count() >= 3);
+    // The spindle's unwound angle still runs far beyond: blocks.csv keeps it.
+    let csv = std::fs::read_to_string(out.join("blocks.csv")).unwrap();
+    let unwound = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(2).unwrap().parse::<f64>().unwrap().abs())
+        .fold(0.0, f64::max);
+    assert!(unwound > 100_000.0, "{unwound}");
+    // Sinumerik 840D: a modulo axis, every angle within the turn.
+    let out = succeeds("spindle-840d", &["wind", "vessel-layers-840d.toml"]);
+    let program = std::fs::read_to_string(out.join("program.mpf")).unwrap();
+    assert!(program.contains("A=ACP(") && program.contains("A=ACN("));
+    assert!(largest_spindle_angle(&program) < 360.0);
+}

@@ -150,6 +150,11 @@ pub struct LinkSpec {
     pub a_max_deg_s2: Option<f64>,
     /// Prismatic acceleration limit, mm per s².
     pub a_max_mm_s2: Option<f64>,
+    /// A driven revolute joint the controller holds within a turn (a modulo
+    /// rotary axis: re-zeroed or written modulo 360° in the program). Only
+    /// for revolute joints without `min_deg`/`max_deg`; default: true for the
+    /// machine's spindle when it has no limits, false otherwise.
+    pub modulo: Option<bool>,
     /// Home value of a driven revolute joint (where inverse kinematics starts), degrees.
     pub home_deg: Option<f64>,
     /// Home value of a driven prismatic joint, mm.

@@ -130,6 +130,9 @@ pub struct Axis {
     pub a_max: f64,
     /// Home value (rad or mm), where inverse kinematics starts.
     pub home: f64,
+    /// The controller holds the axis within a turn (a modulo rotary axis;
+    /// the machine file's `modulo`, by default the unlimited spindle).
+    pub modulo: bool,
 }
 
 impl Axis {
@@ -399,6 +402,22 @@ fn joint(l: &LinkSpec, place: &str) -> Result<(Joint, Option<Axis>), MachineErro
                     "must lie within the limits",
                 ));
             }
+            if l.modulo == Some(true) {
+                if kind != JointKind::Revolute {
+                    return Err(MachineError::field(
+                        place,
+                        "modulo",
+                        "only a revolute joint turns modulo 360 degrees",
+                    ));
+                }
+                if min.is_finite() || max.is_finite() {
+                    return Err(MachineError::field(
+                        place,
+                        "modulo",
+                        "a modulo axis turns without end: no min_deg or max_deg",
+                    ));
+                }
+            }
             Some(Axis {
                 name: name.clone(),
                 link: 0,
@@ -409,6 +428,8 @@ fn joint(l: &LinkSpec, place: &str) -> Result<(Joint, Option<Axis>), MachineErro
                 dv_max,
                 a_max,
                 home,
+                // The spindle's default is set once the spindle is known.
+                modulo: l.modulo.unwrap_or(false),
             })
         }
         (false, Some(_)) => {
@@ -420,6 +441,13 @@ fn joint(l: &LinkSpec, place: &str) -> Result<(Joint, Option<Axis>), MachineErro
         }
         (false, None) => None,
     };
+    if axis.is_none() && l.modulo.is_some() {
+        return Err(MachineError::field(
+            place,
+            "modulo",
+            "only a driven revolute joint is a modulo axis",
+        ));
+    }
     if axis.is_none() && own[5].1.is_some() {
         return Err(MachineError::field(
             place,
@@ -586,6 +614,8 @@ impl Machine {
         }
         let mut links = Vec::with_capacity(order.len());
         let mut axes: Vec<Axis> = Vec::new();
+        // The file's link of each axis.
+        let mut link_of_axis: Vec<usize> = Vec::new();
         for &i in &order {
             let l = &f.links[i];
             let place = format!("link \"{}\"", l.name);
@@ -601,6 +631,7 @@ impl Machine {
                 a.link = links.len();
                 j.axis = Some(axes.len());
                 axes.push(a);
+                link_of_axis.push(i);
             }
             let visuals = l
                 .visuals
@@ -662,6 +693,13 @@ impl Machine {
                 Some(i)
             }
         };
+        // The spindle turns modulo 360 degrees unless the file says otherwise
+        // or it has limits.
+        if let Some(i) = spindle {
+            let a = &mut axes[i];
+            let given = f.links.get(link_of_axis[i]).and_then(|l| l.modulo);
+            a.modulo = given.unwrap_or(a.min.is_infinite() && a.max.is_infinite());
+        }
         let roller_radius = match (m.kind, m.roller_radius) {
             (MachineKind::Placement, Some(h)) if h.is_finite() && h > 0.0 => h,
             (MachineKind::Placement, _) => {

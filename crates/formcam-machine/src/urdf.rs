@@ -132,6 +132,7 @@ pub fn links_from_urdf(text: &str) -> Result<Vec<LinkSpec>, MachineError> {
                 max_mm: None,
                 v_max_mm_min: None,
                 dv_max_mm_min: None,
+                modulo: None,
                 home_deg: None,
                 home_mm: None,
                 a_max_deg_s2: None,

@@ -170,3 +170,55 @@ fn bad_files_give_one_line_errors_naming_the_place_and_field() {
     let e = Machine::from_toml("[machine]\nname = 3\n").unwrap_err();
     assert!(matches!(e, MachineError::Syntax { line: 2, .. }), "{e:?}");
 }
+
+#[test]
+fn the_spindle_turns_modulo_by_default_and_modulo_is_checked() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../machines");
+    for name in ["winder-2axis", "winder-4axis", "winder-6axis", "winder-xab"] {
+        let text = std::fs::read_to_string(dir.join(format!("{name}.toml"))).unwrap();
+        let m = Machine::from_toml(&text).unwrap();
+        let s = m.roles.spindle.unwrap();
+        for (i, a) in m.axes.iter().enumerate() {
+            assert_eq!(a.modulo, i == s, "{name}: axis {}", a.name);
+        }
+    }
+    let spindle = |extra: &str| {
+        format!(
+            "[[link]]\nname = \"base\"\n[[link]]\nname = \"s\"\nparent = \"base\"\n\
+             joint = \"revolute\"\ndriven = true\naxis = \"A\"\n{extra}\n"
+        )
+    };
+    let with_spindle = |extra: &str| {
+        Machine::from_toml(&format!(
+            "{}spindle = \"A\"\n{}\n[[point]]\nname = \"tip\"\nlink = \"base\"\n",
+            HEAD,
+            spindle(extra)
+        ))
+    };
+    assert!(with_spindle("").unwrap().axes[0].modulo);
+    assert!(!with_spindle("modulo = false").unwrap().axes[0].modulo);
+    // A spindle with limits is not modulo by default, and cannot be.
+    assert!(
+        !with_spindle("min_deg = -720.0\nmax_deg = 720.0")
+            .unwrap()
+            .axes[0]
+            .modulo
+    );
+    let e = with_spindle("max_deg = 720.0\nmodulo = true")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("link \"s\"") && e.contains("modulo"), "{e}");
+    // Other axes are modulo only when the file says so.
+    assert!(!with_links(&spindle("")).unwrap().axes[0].modulo);
+    assert!(with_links(&spindle("modulo = true")).unwrap().axes[0].modulo);
+    let e = error(
+        "[[link]]\nname = \"base\"\n[[link]]\nname = \"x\"\nparent = \"base\"\n\
+         joint = \"prismatic\"\ndriven = true\naxis = \"X\"\nmodulo = true\n",
+    );
+    assert!(e.contains("link \"x\"") && e.contains("modulo"), "{e}");
+    let e = error(
+        "[[link]]\nname = \"base\"\n[[link]]\nname = \"r\"\nparent = \"base\"\n\
+         joint = \"revolute\"\nmodulo = true\n",
+    );
+    assert!(e.contains("link \"r\"") && e.contains("modulo"), "{e}");
+}

@@ -13,6 +13,7 @@ fn program(n: usize, axes: &[(&str, bool)]) -> Program {
     let axes = axes
         .iter()
         .map(|(name, rotary)| AxisSpec {
+            modulo: false,
             name: (*name).to_string(),
             rotary: *rotary,
         })

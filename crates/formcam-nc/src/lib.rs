@@ -9,7 +9,11 @@
 //!   CLDATA, Sinumerik 840D, ISO/Fanuc, LinuxCNC and Marlin X/A/B
 //!   (FiberPath-style winders).
 //! * [`write_template`] writes it with a user [`Template`] read from TOML.
-//! * [`read_gcode`] and [`read_cldata`] read programs back.
+//! * Modulo rotary axes (a winder's spindle) are written within
+//!   [`BOUND_DEG`] (100 turns): re-zeroed by `G92` or held modulo 360° with
+//!   a direction, per dialect; [`keep_within_turns`] prepares a program
+//!   ([`modulo`]).
+//! * [`read_gcode`], [`read_gcode_in`] and [`read_cldata`] read programs back.
 //! * [`read_toolpath`] reads a 3-axis milling program as lines and tool-path
 //!   nodes (arcs linearised); [`Toolpath::write`] writes it back with moved
 //!   nodes, every other line byte for byte.
@@ -27,6 +31,7 @@
 //! ```
 
 mod error;
+pub mod modulo;
 mod num;
 pub mod post;
 mod program;
@@ -35,8 +40,9 @@ pub mod template;
 mod toolpath;
 
 pub use error::NcError;
+pub use modulo::{BOUND_DEG, ModuloStyle, keep_within_turns};
 pub use post::{Dialect, write};
 pub use program::{AxisSpec, Block, Feed, Motion, Plane, Program};
-pub use read::{read_cldata, read_gcode};
+pub use read::{read_cldata, read_gcode, read_gcode_in};
 pub use template::{Template, write_template};
 pub use toolpath::{Flavor, Node, NodeKind, Toolpath, ToolpathOptions, read_toolpath};

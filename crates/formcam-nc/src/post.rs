@@ -37,6 +37,10 @@
 //!   rapid rate only where `G0_FEEDRATE` is configured.
 //! * In the `G93` dialects a `G93` block always carries `F`; the first
 //!   per-minute block after inverse time writes `G94` and its `F` again.
+//! * Modulo rotary axes ([`crate::modulo`]): ISO and Marlin write `G92 A..`
+//!   on a line of its own before a re-zeroed block and the angle less the
+//!   re-zeroed turns; Sinumerik 840D writes `A=ACP(..)` / `A=ACN(..)`,
+//!   LinuxCNC `A..` / `A-..` (wrapped rotary), the angle within `[0, 360)`.
 //! * Comments: line breaks become spaces; in parenthesis comments `(`/`)`
 //!   become `[`/`]`.
 //!
@@ -50,6 +54,7 @@ mod gcode;
 use std::fmt;
 use std::str::FromStr;
 
+use crate::modulo::{self, ModuloStyle};
 use crate::num::{self, Out};
 use crate::{NcError, Program};
 
@@ -135,9 +140,12 @@ impl fmt::Display for Dialect {
 /// Writes `program` in `dialect`, appending to `out`.
 ///
 /// Fails, writing nothing, when the program is inconsistent
-/// ([`Program::validate`]) or has an axis the dialect cannot address.
+/// ([`Program::validate`]), has an axis the dialect cannot address, or has a
+/// modulo axis it cannot write within the bound ([`crate::modulo`]: run
+/// [`keep_within_turns`](crate::keep_within_turns) first).
 pub fn write(program: &Program, dialect: Dialect, out: &mut String) -> Result<(), NcError> {
     program.validate()?;
+    modulo::check(program, ModuloStyle::of(dialect))?;
     num::with_out(out, |out| match dialect {
         Dialect::Cldata => {
             cldata::write(program, out);

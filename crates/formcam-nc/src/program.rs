@@ -11,6 +11,11 @@ pub struct AxisSpec {
     pub name: String,
     /// Rotary axis (values in degrees) rather than linear (values in mm).
     pub rotary: bool,
+    /// A rotary axis the controller holds within a turn (a winder's spindle):
+    /// the program re-zeroes it or writes it modulo 360° with a direction,
+    /// per dialect (see [`crate::modulo`]). Block targets still hold its
+    /// unwound angle.
+    pub modulo: bool,
 }
 
 impl AxisSpec {
@@ -19,6 +24,7 @@ impl AxisSpec {
         Self {
             name: name.into(),
             rotary: false,
+            modulo: false,
         }
     }
 
@@ -27,6 +33,16 @@ impl AxisSpec {
         Self {
             name: name.into(),
             rotary: true,
+            modulo: false,
+        }
+    }
+
+    /// A modulo rotary axis (degrees; see [`AxisSpec::modulo`]).
+    pub fn rotary_modulo(name: impl Into<String>) -> Self {
+        Self {
+            name: name.into(),
+            rotary: true,
+            modulo: true,
         }
     }
 }
@@ -62,6 +78,10 @@ pub struct Block {
     pub feed: Feed,
     /// A comment written with the block.
     pub comment: Option<String>,
+    /// The program re-zeroes its modulo axes before this block (a new layer,
+    /// or where an angle would pass the bound): the re-zeroing dialects write
+    /// it (`G92`, CLDATA `ORIGIN`), the modulo ones need none.
+    pub rezero: bool,
 }
 
 impl Block {
@@ -72,6 +92,7 @@ impl Block {
             target,
             feed: Feed::None,
             comment: None,
+            rezero: false,
         }
     }
 
@@ -82,6 +103,7 @@ impl Block {
             target,
             feed,
             comment: None,
+            rezero: false,
         }
     }
 
@@ -143,7 +165,8 @@ impl Program {
         }
     }
 
-    /// Checks what every writer relies on: non-empty unique axis names, one
+    /// Checks what every writer relies on: non-empty unique axis names (a
+    /// modulo axis rotary), one
     /// finite value per axis in every block, a positive finite feed on every
     /// linear block (per-minute or inverse time) and no feed on rapid blocks.
     pub fn validate(&self) -> Result<(), NcError> {
@@ -229,6 +252,12 @@ pub(crate) fn check_axes(axes: &[AxisSpec]) -> Result<(), NcError> {
         }
         if !seen.insert(a.name.as_str()) {
             return Err(NcError::program(format!("axis {} appears twice", a.name)));
+        }
+        if a.modulo && !a.rotary {
+            return Err(NcError::program(format!(
+                "axis {} is modulo but not rotary",
+                a.name
+            )));
         }
     }
     Ok(())

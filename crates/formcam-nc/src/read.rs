@@ -21,6 +21,16 @@
 //! axes, axis words before any `G0`/`G1`, a feed block without a feed, and
 //! whatever the parser rejects — every error with its line number.
 //!
+//! Modulo rotary axes ([`crate::modulo`]) come back as unwound angles:
+//! `G92` with axis words sets those axes' values without moving (the blocks
+//! after it are read in the shifted frame, and the next block is marked
+//! [`Block::rezero`](crate::Block::rezero)); Sinumerik `A=ACP(v)`,
+//! `A=ACN(v)` and `A=DC(v)` go to `v` modulo 360° in the positive, negative
+//! or shorter direction; with [`read_gcode_in`] and the LinuxCNC dialect, a
+//! plain word of a modulo axis is a wrapped rotary position (`A-v`: to `|v|`
+//! in the negative direction). In each case the axis stays put when `v` is
+//! where it stands.
+//!
 //! Axes not yet programmed start at 0. Comments: on a motion line, the
 //! block's comment; a comment line before the first motion, a header comment
 //! (`PROGRAM name` gives the name); a comment line after it, the comment of
@@ -31,20 +41,22 @@
 //! `PARTNO/name`, `UNITS/MM`, `$$` comments (header comments up to the first
 //! statement after `PARTNO`, then the comment of the next `GOTO`), `RAPID` (the next `GOTO` only),
 //! `FEDRAT/f[,MMPM]` and `FEDRAT/f,INVERS` (modal), `GOTO/v1,..,vn` with one
-//! value per axis, `FINI`. Other statements are passed over; `UNITS/INCHES`
+//! value per axis, `ORIGIN/A,o` (the values of axis `A` from there on
+//! measured from `o`; the next block marked re-zeroed), `FINI`. Other statements are passed over; `UNITS/INCHES`
 //! and inch or per-revolution feeds are errors. `$` continuation lines are not
 //! supported.
 
 use gcode::{Code, CommentKind};
 
+use crate::modulo::{Direction, unwrap};
 use crate::program::check_axes;
-use crate::{AxisSpec, Block, Feed, Motion, NcError, Program};
+use crate::{AxisSpec, Block, Dialect, Feed, Motion, NcError, Program};
 
 /// What the pre-pass took out of one line.
 #[derive(Default)]
 struct LineExtra {
-    /// `NAME=value` words.
-    named: Vec<(String, f64)>,
+    /// `NAME=value` words, with the direction of `ACP(..)`, `ACN(..)`, `DC(..)`.
+    named: Vec<(String, f64, Option<Direction>)>,
     /// The line starts with an `O` program number.
     program_number: bool,
 }
@@ -89,6 +101,18 @@ fn prepass(line: &str, lineno: usize, out: &mut String) -> Result<LineExtra, NcE
                 while e < b.len() && b[e] == b' ' {
                     e += 1;
                 }
+                // `ACP(`, `ACN(`, `DC(`: a direction, the number in parentheses.
+                let mut dir = None;
+                for (f, d) in [
+                    ("ACP(", Direction::Positive),
+                    ("ACN(", Direction::Negative),
+                    ("DC(", Direction::Shortest),
+                ] {
+                    if line[e..].to_ascii_uppercase().starts_with(f) {
+                        dir = Some(d);
+                        e += f.len();
+                    }
+                }
                 let vs = e;
                 if e < b.len() && (b[e] == b'-' || b[e] == b'+') {
                     e += 1;
@@ -99,7 +123,16 @@ fn prepass(line: &str, lineno: usize, out: &mut String) -> Result<LineExtra, NcE
                 let value: f64 = line[vs..e].parse().map_err(|_| {
                     NcError::parse(lineno, format!("`{name}=` is not followed by a number"))
                 })?;
-                extra.named.push((name.to_string(), value));
+                if dir.is_some() {
+                    if b.get(e) != Some(&b')') {
+                        return Err(NcError::parse(
+                            lineno,
+                            format!("`{name}=`: the number in parentheses is not closed"),
+                        ));
+                    }
+                    e += 1;
+                }
+                extra.named.push((name.to_string(), value, dir));
                 bytes[s..e].fill(b' ');
                 i = e;
                 continue;
@@ -137,7 +170,14 @@ struct Reader<'a> {
     incremental: bool,
     inverse: bool,
     feed: Option<f64>,
+    /// Where the axes stand (unwound angles for modulo axes).
     pos: Vec<f64>,
+    /// What a `G92` or `ORIGIN` shifted each axis by: written = pos - offset.
+    offset: Vec<f64>,
+    /// Plain words of modulo axes are wrapped rotary positions (LinuxCNC).
+    wrapped: bool,
+    /// The next block follows a re-zero.
+    rezeroed: bool,
     pending: Option<String>,
 }
 
@@ -152,6 +192,9 @@ impl<'a> Reader<'a> {
             inverse: false,
             feed: None,
             pos: vec![0.0; axes.len()],
+            offset: vec![0.0; axes.len()],
+            wrapped: false,
+            rezeroed: false,
             pending: None,
         })
     }
@@ -191,9 +234,24 @@ impl<'a> Reader<'a> {
 
 /// Reads G-code written by formcam's ISO, LinuxCNC, Marlin or Sinumerik 840D
 /// writers (and similar hand-written programs) on `axes` (see the module
-/// documentation for what is understood).
+/// documentation for what is understood). A plain word of a modulo axis is an
+/// absolute angle (in the frame of the last `G92`); for LinuxCNC's wrapped
+/// rotary axes use [`read_gcode_in`].
 pub fn read_gcode(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
+    read_gcode_with(text, axes, false)
+}
+
+/// Reads G-code as [`read_gcode`] does, as `dialect` means it: with
+/// [`Dialect::LinuxCnc`] a plain word of a modulo axis is a wrapped rotary
+/// position, `|v| < 360` and the sign the direction. `Dialect::Cldata` is
+/// not G-code: use [`read_cldata`].
+pub fn read_gcode_in(text: &str, axes: &[AxisSpec], dialect: Dialect) -> Result<Program, NcError> {
+    read_gcode_with(text, axes, dialect == Dialect::LinuxCnc)
+}
+
+fn read_gcode_with(text: &str, axes: &[AxisSpec], wrapped: bool) -> Result<Program, NcError> {
     let mut r = Reader::new(axes)?;
+    r.wrapped = wrapped;
     let mut src = String::with_capacity(text.len());
     let mut extras = Vec::new();
     for (i, line) in text.split('\n').enumerate() {
@@ -219,8 +277,9 @@ pub fn read_gcode(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
     for (i, (block, extra)) in by_line.into_iter().zip(&extras).enumerate() {
         let lineno = i + 1;
         let mut comments: Vec<String> = Vec::new();
-        // (axis index, value)
-        let mut axis_words: Vec<(usize, f64)> = Vec::new();
+        // (axis index, value, direction)
+        let mut axis_words: Vec<(usize, f64, Option<Direction>)> = Vec::new();
+        let mut preset = false;
         let mut f_word: Option<f64> = None;
         let mut word = |r: &Reader<'_>, letter: char, v: f64| -> Result<(), NcError> {
             let letter = letter.to_ascii_uppercase();
@@ -231,7 +290,7 @@ pub fn read_gcode(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
                 .iter()
                 .position(|a| a.name.len() == 1 && a.name.starts_with(letter))
             {
-                axis_words.push((k, v));
+                axis_words.push((k, v, None));
             } else if AXIS_LETTERS.contains(letter) {
                 return Err(NcError::parse(
                     lineno,
@@ -266,6 +325,13 @@ pub fn read_gcode(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
                         return Err(NcError::parse(lineno, "inch units are not supported"));
                     }
                     (90, None) => r.incremental = false,
+                    (92, None) => preset = true,
+                    (92, Some(_)) => {
+                        return Err(NcError::parse(
+                            lineno,
+                            "G92.1, G92.2 and G92.3 are not supported",
+                        ));
+                    }
                     (91, None) => r.incremental = true,
                     (93, None) => r.inverse = true,
                     (94, None) => r.inverse = false,
@@ -294,13 +360,13 @@ pub fn read_gcode(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
                 word(&r, w.letter, v)?;
             }
         }
-        for (name, v) in &extra.named {
+        for (name, v, dir) in &extra.named {
             match r
                 .axes
                 .iter()
                 .position(|a| a.name.eq_ignore_ascii_case(name))
             {
-                Some(k) => axis_words.push((k, *v)),
+                Some(k) => axis_words.push((k, *v, *dir)),
                 None => {
                     return Err(NcError::parse(
                         lineno,
@@ -330,6 +396,13 @@ pub fn read_gcode(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
             }
         }
         let inline = (!comments.is_empty()).then(|| comments.join("; "));
+        if preset {
+            // `G92`: the axes named take these values where they stand.
+            for (k, v, _) in axis_words.drain(..) {
+                r.offset[k] = r.pos[k] - v;
+            }
+            r.rezeroed = true;
+        }
         if axis_words.is_empty() {
             if let Some(c) = inline {
                 r.comment_line(c);
@@ -340,8 +413,21 @@ pub fn read_gcode(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
             return Err(NcError::parse(lineno, "axis words before any G0 or G1"));
         };
         let mut target = r.pos.clone();
-        for (k, v) in axis_words {
-            target[k] = if r.incremental { r.pos[k] + v } else { v };
+        for (k, v, dir) in axis_words {
+            let wrapped = r.wrapped && r.axes[k].modulo;
+            target[k] = match (r.incremental, dir) {
+                (true, _) => r.pos[k] + v,
+                (false, Some(d)) => unwrap(r.pos[k], v, d),
+                (false, None) if wrapped => {
+                    let d = if v.is_sign_negative() {
+                        Direction::Negative
+                    } else {
+                        Direction::Positive
+                    };
+                    unwrap(r.pos[k], v.abs(), d)
+                }
+                (false, None) => v + r.offset[k],
+            };
         }
         let feed = match kind {
             Motion::Rapid => Feed::None,
@@ -363,6 +449,7 @@ pub fn read_gcode(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
             target,
             feed,
             comment,
+            rezero: std::mem::take(&mut r.rezeroed),
         });
     }
     Ok(r.program)
@@ -429,6 +516,25 @@ pub fn read_cldata(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
                 ));
             }
             "RAPID" => rapid = true,
+            "ORIGIN" => {
+                let mut parts = args.split(',');
+                let name = parts.next().unwrap_or("").trim();
+                let k = r
+                    .axes
+                    .iter()
+                    .position(|a| a.name.eq_ignore_ascii_case(name))
+                    .ok_or_else(|| {
+                        NcError::parse(
+                            lineno,
+                            format!(
+                                "ORIGIN/{name}: not one of the program's axes ({})",
+                                r.axis_names()
+                            ),
+                        )
+                    })?;
+                r.offset[k] = number(parts.next().unwrap_or(""), lineno, "ORIGIN")?;
+                r.rezeroed = true;
+            }
             "FEDRAT" => {
                 let mut parts = args.split(',');
                 let f = number(parts.next().unwrap_or(""), lineno, "FEDRAT")?;
@@ -454,7 +560,8 @@ pub fn read_cldata(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
             "GOTO" => {
                 let values = args
                     .split(',')
-                    .map(|v| number(v, lineno, "GOTO"))
+                    .zip(r.offset.iter().chain(std::iter::repeat(&0.0)))
+                    .map(|(v, o)| number(v, lineno, "GOTO").map(|v| v + o))
                     .collect::<Result<Vec<_>, _>>()?;
                 if values.len() != axes.len() {
                     return Err(NcError::parse(
@@ -483,6 +590,7 @@ pub fn read_cldata(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
                     target: values,
                     feed,
                     comment,
+                    rezero: std::mem::take(&mut r.rezeroed),
                 });
             }
             "FINI" => break,

@@ -21,7 +21,14 @@
 //! linear axis moves (or the block is the first) it is `FEDRAT/60/t,INVERS`
 //! (1/min). A record longer than 72 columns is continued on the next line
 //! after a `$` (APT's continuation mark).
+//!
+//! A modulo rotary axis ([`crate::modulo`]) is re-zeroed: before a re-zeroed
+//! block, `ORIGIN/A,o` (APT's shift of the output origin, here of one named
+//! machine axis) says that the axis's `GOTO` values from there on are
+//! measured from `o` degrees, a whole number of turns; every value written
+//! stays within the bound.
 
+use crate::modulo;
 use crate::num::{self, DEG, FEED, FEED_FINE, MM, Out};
 use crate::post::push_comment_text;
 use crate::program::linear_travel;
@@ -50,7 +57,22 @@ pub(super) fn write(p: &Program, out: &mut Out) {
     // (scaled value, decimals, inverse)
     let mut last_feed: Option<(i64, u32, bool)> = None;
     let mut prev: Option<&[f64]> = None;
+    let mods = modulo::modulo_axes(p);
+    // The whole turns of the last re-zero (printed units), per axis.
+    let mut off = vec![0i64; n];
     for b in &p.blocks {
+        if let (true, Some(q)) = (b.rezero, prev) {
+            for &k in &mods {
+                if let Some(s) = modulo::scaled(q[k]) {
+                    off[k] = modulo::turns_below(s);
+                    out.s("ORIGIN/");
+                    push_comment_text(out, &p.axes[k].name, false);
+                    out.c(',');
+                    num::push_scaled(out, off[k], DEG, false);
+                    out.c('\n');
+                }
+            }
+        }
         if let Some(c) = &b.comment {
             comment(out, c);
         }
@@ -74,13 +96,13 @@ pub(super) fn write(p: &Program, out: &mut Out) {
                 if k > 0 {
                     out.c(',');
                 }
-                num::push(out, *v, *d, false);
+                value(out, *v, *d, off[k]);
             }
         } else {
             let mut col = 5;
             for (k, (v, d)) in b.target.iter().zip(&decs).enumerate() {
                 let mut one = Out::new(Vec::with_capacity(24));
-                num::push(&mut one, *v, *d, false);
+                value(&mut one, *v, *d, off[k]);
                 let bytes = one.finish();
                 // The value, its comma, and room for a `$` must fit in 72 columns.
                 if k > 0 {
@@ -100,6 +122,15 @@ pub(super) fn write(p: &Program, out: &mut Out) {
         prev = Some(&b.target);
     }
     out.s("FINI\n");
+}
+
+/// An axis value less the re-zeroed turns `off` (printed units; 0 for the
+/// axes that are not re-zeroed).
+fn value(out: &mut Out, v: f64, dec: u32, off: i64) {
+    match num::scaled(v, dec) {
+        Some(s) if off != 0 => num::push_scaled(out, s - off, dec, false),
+        _ => num::push(out, v, dec, false),
+    }
 }
 
 fn comment(out: &mut Out, text: &str) {

@@ -1,6 +1,7 @@
 //! The G-code writers (Sinumerik 840D, ISO, LinuxCNC, Marlin): one engine,
 //! one [`Style`] per dialect.
 
+use crate::modulo::{self, TURN};
 use crate::num::{self, DEG, FEED, FEED_FINE, MM, Out, Word};
 use crate::post::push_comment_text;
 use crate::program::nc_travel;
@@ -25,6 +26,17 @@ enum Inverse {
     Convert,
 }
 
+/// How a modulo rotary axis is written.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum ModWrite {
+    /// `G92 A..` before a re-zeroed block; the angle less the re-zeroed turns.
+    Rezero,
+    /// `A=ACP(v)` / `A=ACN(v)`, `v` in `[0, 360)` (Sinumerik).
+    Acp,
+    /// `A v` / `A-v`, `v` in `[0, 360)`: LinuxCNC's wrapped rotary axes.
+    Signed,
+}
+
 /// Which axis names a dialect can address.
 #[derive(Clone, Copy)]
 enum Axes {
@@ -44,6 +56,7 @@ pub(super) struct Style {
     parens: bool,
     keep_point: bool,
     inverse: Inverse,
+    modulo: ModWrite,
 }
 
 const NINE: &[&str] = &["X", "Y", "Z", "A", "B", "C", "U", "V", "W"];
@@ -59,6 +72,7 @@ pub(super) const SINUMERIK: Style = Style {
     parens: false,
     keep_point: false,
     inverse: Inverse::G93,
+    modulo: ModWrite::Acp,
 };
 
 /// ISO 6983 / Fanuc.
@@ -71,6 +85,7 @@ pub(super) const ISO: Style = Style {
     parens: true,
     keep_point: true,
     inverse: Inverse::G93,
+    modulo: ModWrite::Rezero,
 };
 
 /// LinuxCNC.
@@ -83,6 +98,7 @@ pub(super) const LINUXCNC: Style = Style {
     parens: true,
     keep_point: false,
     inverse: Inverse::G93,
+    modulo: ModWrite::Signed,
 };
 
 /// Marlin with X, A, B (and Y, Z, C).
@@ -95,6 +111,7 @@ pub(super) const MARLIN: Style = Style {
     parens: false,
     keep_point: false,
     inverse: Inverse::Convert,
+    modulo: ModWrite::Rezero,
 };
 
 /// Single letters Sinumerik reserves for other addresses.
@@ -260,7 +277,21 @@ pub(super) fn write(p: &Program, st: &Style, out: &mut Out) -> Result<(), NcErro
 /// ([`state_before`]), so the text is the same for any number of threads.
 fn write_in(p: &Program, st: &Style, out: &mut Out, threads: usize) -> Result<(), NcError> {
     let words = axis_words(p, st)?;
-    let n = words.len();
+    let mod_words: Vec<Option<String>> = p
+        .axes
+        .iter()
+        .map(|a| {
+            a.modulo.then(|| match st.modulo {
+                ModWrite::Acp => format!(" {}=", a.name),
+                ModWrite::Rezero | ModWrite::Signed => format!(" {}", a.name),
+            })
+        })
+        .collect();
+    let words = Words {
+        axes: words,
+        modulo: mod_words,
+    };
+    let n = words.axes.len();
     let per_block = 16 + 12 * n;
     out.reserve(256 + p.blocks.len() * per_block);
     let mut ln = LineNo {
@@ -309,6 +340,13 @@ fn write_in(p: &Program, st: &Style, out: &mut Out, threads: usize) -> Result<()
     Ok(())
 }
 
+/// The words written before axis values: per axis its word and decimals,
+/// and for a modulo axis the text before its value (`" A"`, Sinumerik `" A="`).
+struct Words {
+    axes: Vec<(AxisWord, u32)>,
+    modulo: Vec<Option<String>>,
+}
+
 /// The modal state of the writer between blocks.
 struct State<'a> {
     /// Last printed scaled axis values; `i64::MIN` (never a scaled value): none.
@@ -319,6 +357,8 @@ struct State<'a> {
     last_feed: Option<(i64, u32)>,
     /// The previous block's end point.
     prev: Option<&'a [f64]>,
+    /// The whole turns (printed units) of the last re-zero, per axis.
+    off: Vec<i64>,
     ln: LineNo,
 }
 
@@ -371,11 +411,17 @@ fn state_before<'a>(p: &'a Program, st: &Style, start: usize, first_n: u64) -> S
             break;
         }
     }
+    let off = if st.modulo == ModWrite::Rezero {
+        modulo::offsets_before(p, start)
+    } else {
+        vec![0; n]
+    };
     State {
         last,
         g93,
         last_feed,
         prev,
+        off,
         ln: LineNo {
             on: st.line_numbers,
             next: first_n + 10 * start as u64,
@@ -387,21 +433,29 @@ fn state_before<'a>(p: &'a Program, st: &Style, start: usize, first_n: u64) -> S
 fn write_blocks<'a>(
     p: &'a Program,
     st: &Style,
-    words: &[(AxisWord, u32)],
+    words: &Words,
     range: std::ops::Range<usize>,
     state: &mut State<'a>,
     out: &mut Out,
 ) {
+    let Words {
+        axes: words,
+        modulo: mod_words,
+    } = words;
     let n = words.len();
     let State {
         last,
         g93,
         last_feed,
         prev,
+        off,
         ln,
     } = state;
     let last = &mut last[..n];
     for b in &p.blocks[range] {
+        if let (true, ModWrite::Rezero, Some(before)) = (b.rezero, st.modulo, *prev) {
+            rezero_line(out, st, mod_words, before, off);
+        }
         ln.push(out);
         let feed = block_feed(st, b, *prev);
         match b.kind {
@@ -430,8 +484,13 @@ fn write_blocks<'a>(
             match num::scaled(v, *dec) {
                 Some(s) if s == last[k] => continue,
                 Some(s) => {
-                    word.push(out);
-                    num::push_scaled(out, s, *dec, st.keep_point);
+                    match &mod_words[k] {
+                        Some(mw) => push_modulo(out, st, mw, s, last[k], off[k]),
+                        None => {
+                            word.push(out);
+                            num::push_scaled(out, s, *dec, st.keep_point);
+                        }
+                    }
                     last[k] = s;
                 }
                 None => {
@@ -444,9 +503,15 @@ fn write_blocks<'a>(
         }
         if !any {
             // Nothing moved: still write one axis word, so the block stays a move.
-            if let (Some((word, dec)), Some(v)) = (words.first(), b.target.first()) {
-                word.push(out);
-                num::push(out, *v, *dec, st.keep_point);
+            match (words.first(), b.target.first(), mod_words.first()) {
+                (Some(_), Some(_), Some(Some(mw))) => {
+                    push_modulo(out, st, mw, last[0], last[0], off[0]);
+                }
+                (Some((word, dec)), Some(v), _) => {
+                    word.push(out);
+                    num::push(out, *v, *dec, st.keep_point);
+                }
+                _ => {}
             }
         }
         if let Some((f, dec, always)) = feed {
@@ -471,6 +536,51 @@ fn write_blocks<'a>(
         }
         out.c('\n');
         *prev = Some(&b.target);
+    }
+}
+
+/// `G92` with every modulo axis at its angle within the turn, `before` the
+/// block; the re-zeroed turns go to `off`.
+fn rezero_line(
+    out: &mut Out,
+    st: &Style,
+    mod_words: &[Option<String>],
+    before: &[f64],
+    off: &mut [i64],
+) {
+    if mod_words.iter().all(Option::is_none) {
+        return;
+    }
+    out.s("G92");
+    for ((mw, v), o) in mod_words.iter().zip(before).zip(off.iter_mut()) {
+        let (Some(mw), Some(s)) = (mw, modulo::scaled(*v)) else {
+            continue;
+        };
+        *o = modulo::turns_below(s);
+        out.s(mw);
+        num::push_scaled(out, s - *o, DEG, st.keep_point);
+    }
+    out.c('\n');
+}
+
+/// A modulo axis at `s` (printed units) after `last`: re-zeroing, the angle
+/// less the turns `off`; modulo, the angle within the turn and the direction.
+fn push_modulo(out: &mut Out, st: &Style, word: &str, s: i64, last: i64, off: i64) {
+    out.s(word);
+    let negative = last != i64::MIN && s < last;
+    match st.modulo {
+        ModWrite::Rezero => num::push_scaled(out, s - off, DEG, st.keep_point),
+        ModWrite::Acp => {
+            out.s(if negative { "ACN(" } else { "ACP(" });
+            num::push_scaled(out, s.rem_euclid(TURN), DEG, false);
+            out.c(')');
+        }
+        ModWrite::Signed => {
+            if negative {
+                out.c('-');
+            }
+            num::push_scaled(out, s.rem_euclid(TURN), DEG, st.keep_point);
+        }
     }
 }
 

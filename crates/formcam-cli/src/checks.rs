@@ -187,7 +187,12 @@ mod tests {
         for c in all {
             assert_eq!(c.name().parse::<Check>().unwrap(), c);
         }
-        assert!("slak".parse::<Check>().unwrap_err().contains("reverse-rotation"));
+        assert!(
+            "slak"
+                .parse::<Check>()
+                .unwrap_err()
+                .contains("reverse-rotation")
+        );
         let text = format!(
             "allow = [{}]",
             all.iter()
@@ -217,7 +222,10 @@ mod tests {
         ];
         let job = Path::new("job.toml");
         let e = enforce(job, &[Check::Slack], &v).unwrap_err().0;
-        assert!(e.contains("layer 2") && e.contains("allow = [\"limits\"]"), "{e}");
+        assert!(
+            e.contains("layer 2") && e.contains("allow = [\"limits\"]"),
+            "{e}"
+        );
         assert!(enforce(job, &[Check::Limits, Check::Slack], &v).is_ok());
         assert!(enforce(job, &[], &[]).is_ok());
         assert_eq!(accepted(&v), [Check::Slack, Check::Limits]);

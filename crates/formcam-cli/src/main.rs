@@ -165,7 +165,10 @@ fn main() -> ExitCode {
                 Some(WindCommand::Axes { job, output }) => Ok((job, output, wind::Stage::Axes)),
                 None => match (whole, whole_out) {
                     (Some(job), Some(output)) if job.extension().is_some_and(|e| e == "wind") => {
-                        return finish(wind::run_wind_file(&job, &output, eye_clearance, &allow).map(|s| println!("{s}")));
+                        return finish(
+                            wind::run_wind_file(&job, &output, eye_clearance, &allow)
+                                .map(|s| println!("{s}")),
+                        );
                     }
                     (Some(_), Some(_)) if !allow.is_empty() => Err(CliError(
                         "--allow: TOML jobs name the checks they accept in [checks] allow".into(),

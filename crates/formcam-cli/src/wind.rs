@@ -482,10 +482,7 @@ pub fn run_wind_file(
 ) -> Result<String, CliError> {
     let imported = crate::windfile::read(path, eye_clearance)?;
     let label = PathBuf::from("machines/winder-xab.toml (built in)");
-    let m = crate::machine::parse(
-        &label,
-        &crate::windfile::machine_text(imported.eye_radius)?,
-    )?;
+    let m = crate::machine::parse(&label, &crate::windfile::machine_text(imported.eye_radius)?)?;
     let mut summary = serde_json::Map::new();
     summary.insert("schema_version".into(), json!(imported.schema_version));
     summary.insert("eye_radius_mm".into(), json!(imported.eye_radius));
@@ -513,6 +510,9 @@ pub fn run_wind_file(
         imported.eye_radius, imported.eye_clearance
     ))
 }
+
+/// Output files: name and contents.
+type Files = Vec<(String, Vec<u8>)>;
 
 /// A multi-layer job, read from TOML or imported.
 struct Layered {
@@ -668,7 +668,7 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
         )?;
         // The layer's own outputs, as a single-layer job writes them.
         let title = format!("{label}: {} mandrel, one pass", mandrel.kind());
-        let mut own: Vec<(String, Vec<u8>)> = vec![
+        let mut own: Files = vec![
             ("path.csv".into(), path_csv(layer)),
             (
                 "path.svg".into(),
@@ -722,7 +722,7 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
     let mut fibre = 0.0;
     let mut blocks: Vec<crate::program::LayerBlocks> = Vec::new();
     let mut per_layer = Vec::new();
-    let mut layer_files: Vec<(String, Vec<(String, Vec<u8>)>)> = Vec::new();
+    let mut layer_files: Vec<(String, Files)> = Vec::new();
     // Skip layers before the first winding layer turn the mandrel from where
     // that layer starts (else from the machine's home).
     let first_start: Vec<f64> = wound

@@ -443,7 +443,10 @@ pub fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
                 l.boolean("skipInitialNearLock")?;
                 match l.number("frictionLambda")? {
                     Some(f) if f < 0.0 => {
-                        return Err(format!("{}: must be >= 0, got {f}", field("frictionLambda")));
+                        return Err(format!(
+                            "{}: must be >= 0, got {f}",
+                            field("frictionLambda")
+                        ));
                     }
                     Some(f) if f != 0.0 => {
                         return Err(format!(

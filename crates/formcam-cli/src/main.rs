@@ -39,9 +39,9 @@ enum Command {
         #[arg(short, long)]
         output: Option<PathBuf>,
         /// `.wind` jobs: the eye's clearance over the mandrel, mm (it rides
-        /// parallel to the axis at the mandrel's radius plus this).
-        #[arg(long, value_name = "MM", default_value_t = windfile::EYE_CLEARANCE_MM)]
-        eye_clearance: f64,
+        /// parallel to the axis at the mandrel's radius plus this; default 25).
+        #[arg(long, value_name = "MM")]
+        eye_clearance: Option<f64>,
         /// `.wind` jobs: checks whose failure is accepted (comma-separated:
         /// slack, clearance, l_max, cyclicity, reverse-rotation, limits,
         /// unreachable, timing, acceleration); TOML jobs use `[checks] allow`.
@@ -166,12 +166,20 @@ fn main() -> ExitCode {
                 None => match (whole, whole_out) {
                     (Some(job), Some(output)) if job.extension().is_some_and(|e| e == "wind") => {
                         return finish(
-                            wind::run_wind_file(&job, &output, eye_clearance, &allow)
-                                .map(|s| println!("{s}")),
+                            wind::run_wind_file(
+                                &job,
+                                &output,
+                                eye_clearance.unwrap_or(windfile::EYE_CLEARANCE_MM),
+                                &allow,
+                            )
+                            .map(|s| println!("{s}")),
                         );
                     }
                     (Some(_), Some(_)) if !allow.is_empty() => Err(CliError(
                         "--allow: TOML jobs name the checks they accept in [checks] allow".into(),
+                    )),
+                    (Some(_), Some(_)) if eye_clearance.is_some() => Err(CliError(
+                        "--eye-clearance: for .wind jobs; TOML jobs place the eye in [eye]".into(),
                     )),
                     (Some(job), Some(output)) => Ok((job, output, wind::Stage::Program)),
                     _ => Err(CliError(

@@ -450,6 +450,9 @@ fn run_layers(job_path: &Path, job: Job, out: &Path) -> Result<String, CliError>
         .transpose()?
         .ok_or_else(|| at("[machine]: missing table (a program needs a machine)".into()))?;
     let m = crate::machine::load(&file)?;
+    if job.layer.as_ref().is_some_and(Vec::is_empty) {
+        return Err(at("[[layer]]: no layers".into()));
+    }
     run_layered(
         job_path,
         Layered {
@@ -554,9 +557,6 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
         .map(|e| e.spec(read))
         .transpose()
         .map_err(|e| at(e.to_string()))?;
-    if layers.is_empty() {
-        return Err(at("[[layer]]: no layers".into()));
-    }
     let tau = motion.tau_s.unwrap_or(0.004);
     // 1. Plan every layer in order: each on the mandrel grown by those before.
     enum LayerPlan {

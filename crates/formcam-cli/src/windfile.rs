@@ -500,6 +500,9 @@ pub fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
         out.push(spec);
     }
     root.ignored(&version_text, &mut warnings);
+    if out.is_empty() {
+        warnings.push("layers: none; the program holds no motion".into());
+    }
 
     let r_max = diameter / 2.0;
     let mandrel = match cone {

@@ -114,6 +114,9 @@ fn a_slack_band_refuses_the_program_unless_accepted() {
     let other = format!("{slack}\n[checks]\nallow = [\"timing\"]\n");
     let (st, out) = run("2axis-other", &["wind"], &other);
     refused("other", &st, &out, &["slack"]);
+    // TOML jobs accept checks in the job, not on the command line.
+    let (st, out) = run("2axis-flag", &["wind", "--allow", "slack"], &slack);
+    refused("flag", &st, &out, &["--allow", "[checks]"]);
     let typo = format!("{slack}\n[checks]\nallow = [\"slak\"]\n");
     let (st, out) = run("2axis-typo", &["wind"], &typo);
     refused("typo", &st, &out, &["slak", "slack"]);

@@ -130,6 +130,10 @@ fn valid_documents_plan() {
         .unwrap()
         .push(helical(90.0, 1, 180.0));
     corpus.push(("friction-zero-and-90", d));
+    // No layers: a program without motion.
+    let mut d = base();
+    d["layers"] = json!([]);
+    corpus.push(("no-layers", d));
     for (name, doc) in &corpus {
         let (s, _) = plans(name, doc);
         assert_eq!(s["machine"], "X/A/B winder", "{name}");
@@ -418,6 +422,15 @@ fn accepted_slack_is_reported_in_the_summary_and_the_header() {
         "defaultFeedRate": 3000,
         "layers": [helical(20.0, 1, 180.0)]
     });
+    let (st, out) = wind("allow-typo", &doc, &["--allow", "timing,slak"]);
+    assert!(!st.status.success() && !out.exists());
+    assert!(String::from_utf8_lossy(&st.stderr).contains("slak"));
+    let (st, _) = wind("allow-more", &doc, &["--allow", "timing,limits"]);
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
     let (st, out) = wind("slack", &doc, &[]);
     assert!(
         st.status.success(),

@@ -540,3 +540,52 @@ pub fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
         warnings,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+
+    #[test]
+    fn the_built_in_winder_carries_its_eye_at_the_radius_asked() {
+        for radius in [42.5, 250.0, 600.0] {
+            let text = machine_text(radius).unwrap();
+            let m = crate::machine::parse(Path::new("xab.toml"), &text).unwrap();
+            let q = m.home();
+            let eye = m.key_points(&q)[m.roles.payout];
+            let local = m.poses(&q)[m.roles.mandrel].inverse_transform_point(&eye);
+            let r = local.x.hypot(local.y);
+            assert!((r - radius).abs() < 1e-9, "{r} vs {radius}");
+        }
+    }
+
+    #[test]
+    fn versions_of_major_one_are_read() {
+        assert_eq!(version(None).unwrap(), ("1.0".into(), 0));
+        assert_eq!(version(Some(&Value::from("1.3"))).unwrap().1, 3);
+        assert_eq!(version(Some(&Value::from("1.27"))).unwrap().1, 27);
+        for bad in ["2.0", "0.9", "1", "1.x", "1.2.3", ""] {
+            assert!(version(Some(&Value::from(bad))).is_err(), "{bad}");
+        }
+        assert!(version(Some(&Value::from(1.0))).is_err());
+    }
+
+    #[test]
+    fn a_later_minor_warns_and_unknown_members_are_listed() {
+        let doc = r#"{"schemaVersion": "1.9", "extra": 1,
+            "mandrelParameters": {"diameter": 100, "windLength": 400},
+            "towParameters": {"width": 10, "thickness": 0.3},
+            "defaultFeedRate": 1500, "layers": [{"windType": "hoop", "tension": 3}]}"#;
+        let i = parse(doc, EYE_CLEARANCE_MM).unwrap();
+        assert_eq!(i.schema_version, "1.9");
+        assert_eq!(i.eye_radius, 75.0);
+        assert_eq!(i.warnings.len(), 3, "{:?}", i.warnings);
+        assert!(i.warnings[0].starts_with("schemaVersion"));
+        assert!(
+            i.warnings
+                .iter()
+                .any(|w| w.starts_with("layers[0].tension"))
+        );
+        assert!(i.warnings.iter().any(|w| w.starts_with("extra")));
+    }
+}

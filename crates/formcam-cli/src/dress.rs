@@ -40,6 +40,10 @@ pub fn run_text(job: &Path, text: &str, out: &Path) -> Result<String, CliError> 
         e => CliError(format!("{}: {e}", job.display())),
     };
     let parsed = DressJob::from_toml(text).map_err(err)?;
+    let warnings = parsed.warnings();
+    for w in &warnings {
+        eprintln!("formcam: warning: {}: {w}", job.display());
+    }
     let initial = match &parsed.process.initial_contour {
         Some(file) => Some(read_contour(&resolve(job, file))?),
         None => None,
@@ -52,7 +56,10 @@ pub fn run_text(job: &Path, text: &str, out: &Path) -> Result<String, CliError> 
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let summary = summary(&name, &d);
+    let mut summary = summary(&name, &d);
+    if let Some(obj) = summary.as_object_mut() {
+        obj.insert("warnings".into(), serde_json::json!(warnings));
+    }
     let files: Vec<(&str, Vec<u8>)> = vec![
         ("profile.csv", profile_csv(&d)),
         ("dresser.csv", dresser_csv(&d)),

@@ -1,6 +1,7 @@
 //! The `formcam` command line: reads job files, runs the processes of the
 //! library crates and writes their outputs atomically.
 
+mod checks;
 mod correct;
 mod dress;
 mod machine;
@@ -37,6 +38,15 @@ enum Command {
         /// outputs, summary.json).
         #[arg(short, long)]
         output: Option<PathBuf>,
+        /// `.wind` jobs: the eye's clearance over the mandrel, mm (it rides
+        /// parallel to the axis at the mandrel's radius plus this; default 25).
+        #[arg(long, value_name = "MM")]
+        eye_clearance: Option<f64>,
+        /// `.wind` jobs: checks whose failure is accepted (comma-separated:
+        /// slack, clearance, l_max, cyclicity, reverse-rotation, limits,
+        /// unreachable, timing, acceleration); TOML jobs use `[checks] allow`.
+        #[arg(long, value_name = "CHECKS", value_delimiter = ',')]
+        allow: Vec<checks::Check>,
     },
     /// Mould correction: `formcam correct --measurements cmm.csv --program
     /// mould.nc -o corrected.nc`; `formcam correct simulate SCENARIO -o OUT`
@@ -146,6 +156,8 @@ fn main() -> ExitCode {
             what,
             job: whole,
             output: whole_out,
+            eye_clearance,
+            allow,
         } => {
             let picked = match what {
                 Some(WindCommand::Path { job, output }) => Ok((job, output, wind::Stage::Path)),
@@ -153,8 +165,22 @@ fn main() -> ExitCode {
                 Some(WindCommand::Axes { job, output }) => Ok((job, output, wind::Stage::Axes)),
                 None => match (whole, whole_out) {
                     (Some(job), Some(output)) if job.extension().is_some_and(|e| e == "wind") => {
-                        return finish(wind::run_wind_file(&job, &output).map(|s| println!("{s}")));
+                        return finish(
+                            wind::run_wind_file(
+                                &job,
+                                &output,
+                                eye_clearance.unwrap_or(windfile::EYE_CLEARANCE_MM),
+                                &allow,
+                            )
+                            .map(|s| println!("{s}")),
+                        );
                     }
+                    (Some(_), Some(_)) if !allow.is_empty() => Err(CliError(
+                        "--allow: TOML jobs name the checks they accept in [checks] allow".into(),
+                    )),
+                    (Some(_), Some(_)) if eye_clearance.is_some() => Err(CliError(
+                        "--eye-clearance: for .wind jobs; TOML jobs place the eye in [eye]".into(),
+                    )),
                     (Some(job), Some(output)) => Ok((job, output, wind::Stage::Program)),
                     _ => Err(CliError(
                         "wind: give a job and -o OUTDIR (or a subcommand: path, eye, axes)".into(),

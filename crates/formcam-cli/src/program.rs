@@ -20,6 +20,7 @@ use serde::Deserialize;
 use serde_json::json;
 
 use crate::CliError;
+use crate::checks::{Check, Violated};
 
 /// The `[motion]` table of a job.
 #[derive(Debug, Clone, Default, Deserialize)]
@@ -59,6 +60,8 @@ pub struct Built {
     pub summary: serde_json::Map<String, serde_json::Value>,
     /// A part of the console line.
     pub line: String,
+    /// The axes over the whole program (`axes.csv` of a multi-layer job).
+    pub program_axes: Vec<u8>,
 }
 
 fn positive(job: &Path, field: &str, v: f64) -> Result<f64, CliError> {
@@ -93,6 +96,9 @@ pub struct LayerBlocks {
     pub times: [f64; 4],
     /// An offset the layer leaves to every later one (a skip layer's turn).
     pub carry: Vec<f64>,
+    /// The checks that failed in this layer (the program is written only when
+    /// the job accepts them).
+    pub violated: Vec<Violated>,
 }
 
 /// Checks the axes of a layer, cuts one circuit into blocks, times them, and
@@ -108,24 +114,27 @@ pub fn layer_blocks(
     circuits: u32,
 ) -> Result<LayerBlocks, CliError> {
     let here = |msg: String| CliError(format!("{}: {msg}", job.display()));
-    // A program must not drive an axis beyond its limits.
-    if let Some(i) = track
+    // A program must not drive an axis beyond its limits (unless the job accepts it).
+    let mut violated: Vec<Violated> = track
         .issues
         .iter()
-        .find(|i| i.kind == "limit" || i.kind == "unreachable")
-    {
-        return Err(here(format!(
-            "machine: {label}: the program would {} at x = {:.3} mm ({} points, worst {:.4}); no \
-             program written",
-            match (i.kind, &i.axis) {
-                ("limit", Some(a)) => format!("drive axis {a} beyond its limit"),
+        .filter_map(|i| {
+            let check = Check::of_ik_issue(i.kind)?;
+            let what = match (check, &i.axis) {
+                (Check::Limits, Some(a)) => format!("drive axis {a} beyond its limit"),
+                (Check::Clearance, _) => "bring the eye within its clearance".to_string(),
                 _ => "miss the eye (unreachable)".to_string(),
-            },
-            i.x,
-            i.count,
-            i.worst
-        )));
-    }
+            };
+            Some(Violated {
+                check,
+                layer: label.to_string(),
+                detail: format!(
+                    "{what} at x = {:.3} mm ({} points, worst {:.4})",
+                    i.x, i.count, i.worst
+                ),
+            })
+        })
+        .collect();
     let w = m.axes.len();
     let tol_mm = positive(
         job,
@@ -193,22 +202,30 @@ pub fn layer_blocks(
         let a_max: Vec<f64> = m.axes.iter().map(|a| a.a_max).collect();
         ramped = with_acceleration(&d, chosen, &limits, &a_max).map_err(limit_err)?;
         if let Some(&(b, k, e)) = check_acceleration(&d, &ramped.times, &a_max).first() {
-            return Err(here(format!(
-                "motion: block {} breaks the acceleration limit of axis {} by {e:.3e}",
-                b + 1,
-                m.axes[k].name
-            )));
+            violated.push(Violated {
+                check: Check::Acceleration,
+                layer: label.to_string(),
+                detail: format!(
+                    "break the acceleration limit of axis {} in block {} by {e:.3e}",
+                    m.axes[k].name,
+                    b + 1
+                ),
+            });
         }
         &ramped
     } else {
         chosen
     };
     if let Some(&(b, k, e)) = check_timing(&d, &chosen.times, &limits).first() {
-        return Err(here(format!(
-            "motion: block {} breaks the limits of axis {} by {e:.3e}; no program written",
-            b + 1,
-            m.axes[k].name
-        )));
+        violated.push(Violated {
+            check: Check::Timing,
+            layer: label.to_string(),
+            detail: format!(
+                "break the velocity limits of axis {} in block {} by {e:.3e}",
+                m.axes[k].name,
+                b + 1
+            ),
+        });
     }
     let row = |i: usize| -> Vec<f64> {
         track
@@ -245,6 +262,7 @@ pub fn layer_blocks(
             k * t_star.iter().sum::<f64>(),
         ],
         carry: vec![0.0; w],
+        violated,
     })
 }
 
@@ -293,6 +311,7 @@ pub fn skip_blocks(
         blocks: vec![(target, t, t, 1.0)],
         times: [t; 4],
         carry,
+        violated: Vec::new(),
     })
 }
 
@@ -429,6 +448,19 @@ pub fn write_program(
             total[2] + transitions
         ),
     ];
+    let violated: Vec<Violated> = layers.iter().flat_map(|l| l.violated.clone()).collect();
+    let accepted = crate::checks::accepted(&violated);
+    if !accepted.is_empty() {
+        program.header_comments.push(format!(
+            "checks accepted as violated ([checks] allow): {}",
+            accepted
+                .iter()
+                .map(|c| c.name())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    let (program_axes, axis_ranges) = program_axes(m, &program);
     let mut text = String::with_capacity(count * 64);
     let ext = match (&post.template, &post.dialect) {
         (Some(_), Some(_)) => {
@@ -474,6 +506,20 @@ pub fn write_program(
         json!(total[3] + transitions),
     );
     summary.insert("program_file".into(), json!(format!("program.{ext}")));
+    summary.insert("axis_ranges".into(), axis_ranges);
+    summary.insert(
+        "checks_accepted".into(),
+        json!(accepted.iter().map(|c| c.name()).collect::<Vec<_>>()),
+    );
+    summary.insert(
+        "checks_violated".into(),
+        json!(
+            violated
+                .iter()
+                .map(|v| json!({ "check": v.check.name(), "layer": v.layer, "detail": v.detail }))
+                .collect::<Vec<_>>()
+        ),
+    );
     let line = format!(
         "; {} layers, {count} blocks, {:.2} s (pairwise {:.2} s, global {:.2} s) -> program.{ext}",
         layers.len(),
@@ -488,5 +534,49 @@ pub fn write_program(
         ],
         summary,
         line,
+        program_axes,
     })
+}
+
+/// The axes over the whole program (`t` in s since its start, then each axis in
+/// NC units, at its start and at every block's end) and their ranges over every
+/// block as summary JSON.
+fn program_axes(m: &Machine, program: &Program) -> (Vec<u8>, serde_json::Value) {
+    let mut csv = String::with_capacity(program.blocks.len() * 16 * (m.axes.len() + 1));
+    csv.push('t');
+    for a in &m.axes {
+        let _ = write!(csv, ",{}", a.name);
+    }
+    csv.push('\n');
+    let mut lo = vec![f64::INFINITY; m.axes.len()];
+    let mut hi = vec![f64::NEG_INFINITY; m.axes.len()];
+    let mut t = 0.0;
+    for b in &program.blocks {
+        if let Feed::InverseTime(dt) = b.feed {
+            t += dt;
+        }
+        let _ = write!(csv, "{t}");
+        for (a, v) in b.target.iter().enumerate() {
+            let _ = write!(csv, ",{v}");
+            if a < lo.len() {
+                lo[a] = lo[a].min(*v);
+                hi[a] = hi[a].max(*v);
+            }
+        }
+        csv.push('\n');
+    }
+    let ranges = m
+        .axes
+        .iter()
+        .enumerate()
+        .map(|(a, ax)| {
+            json!({
+                "axis": ax.name,
+                "min": lo[a],
+                "max": hi[a],
+                "unit": if ax.is_rotary() { "deg" } else { "mm" },
+            })
+        })
+        .collect();
+    (csv.into_bytes(), serde_json::Value::Array(ranges))
 }

@@ -1,6 +1,5 @@
 //! `formcam wind ...` and the demo.
 
-use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -16,11 +15,14 @@ use serde::Deserialize;
 use serde_json::json;
 
 use crate::CliError;
+use crate::checks::{Check, ChecksJob};
 use crate::output::write_all;
 use crate::program::{MotionJob, PostJob, nc};
 
-/// A job file. Tables of other processes are kept for their commands.
+/// A winding job file: a table it does not know (a misspelt `[motoin]`) is an
+/// error.
 #[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct Job {
     mandrel: Option<MandrelSpec>,
     winding: Option<WindingSpec>,
@@ -30,8 +32,8 @@ struct Job {
     layer: Option<Vec<WindingSpec>>,
     motion: Option<MotionJob>,
     post: Option<PostJob>,
-    #[serde(flatten)]
-    _other: BTreeMap<String, toml::Value>,
+    /// Failed checks the job accepts.
+    checks: Option<ChecksJob>,
 }
 
 fn read_job(path: &Path) -> Result<Job, CliError> {
@@ -74,6 +76,9 @@ struct Planned {
     machine: Option<(PathBuf, IkMethod)>,
     motion: MotionJob,
     post: PostJob,
+    checks: Vec<Check>,
+    /// Implausible values, one line each naming the field.
+    warnings: Vec<String>,
 }
 
 /// The machine file and IK method a job's `[machine]` names.
@@ -149,6 +154,8 @@ fn plan(job_path: &Path, job: Job) -> Result<Planned, CliError> {
     };
     let mandrel = mspec.build(read).map_err(here)?;
     let spec = wspec.layer_spec(&mandrel).map_err(here)?;
+    let mut warnings = mspec.warnings();
+    warnings.extend(wspec.warnings(&mandrel));
     let eye = job.eye.map(|e| e.spec(read)).transpose().map_err(here)?;
     let machine = job
         .machine
@@ -162,7 +169,16 @@ fn plan(job_path: &Path, job: Job) -> Result<Planned, CliError> {
         machine,
         motion: job.motion.unwrap_or_default(),
         post: job.post.unwrap_or_default(),
+        checks: job.checks.unwrap_or_default().allow,
+        warnings,
     })
+}
+
+/// Prints implausible values on stderr, one line each naming the job.
+fn warn(job: &Path, warnings: &[String]) {
+    for w in warnings {
+        eprintln!("formcam: warning: {}: {w}", job.display());
+    }
 }
 
 fn path_csv(layer: &Layer) -> Vec<u8> {
@@ -248,13 +264,19 @@ fn run_job(job: &Path, table: Job, out: &Path, stage: Stage) -> Result<String, C
         machine,
         motion,
         post,
+        checks,
+        warnings,
     } = plan(job, table)?;
+    warn(job, &warnings);
     let name = job
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     let title = format!("{name}: {} mandrel, one pass", mandrel.kind());
     let mut summary = summary_value(job, mandrel.kind(), &layer);
+    if let Some(w) = summary.get_mut("warnings").and_then(|w| w.as_array_mut()) {
+        w.extend(warnings.iter().map(|s| json!(s)));
+    }
     let mut files: Vec<(String, Vec<u8>)> = vec![
         ("path.csv".to_string(), path_csv(&layer)),
         (
@@ -315,7 +337,7 @@ fn run_job(job: &Path, table: Job, out: &Path, stage: Stage) -> Result<String, C
                 .file_stem()
                 .map(|n| n.to_string_lossy().into_owned())
                 .unwrap_or_default();
-            let layer_blocks = crate::program::layer_blocks(
+            let mut layer_blocks = crate::program::layer_blocks(
                 job,
                 "layer 1",
                 m,
@@ -324,6 +346,12 @@ fn run_job(job: &Path, table: Job, out: &Path, stage: Stage) -> Result<String, C
                 &motion,
                 layer.pattern.circuits,
             )?;
+            if let Some(t) = &traj {
+                layer_blocks
+                    .violated
+                    .extend(crate::checks::eye_violations("layer 1", &t.violations));
+            }
+            crate::checks::enforce(job, &checks, &layer_blocks.violated)?;
             let built =
                 crate::program::write_program(job, &stem, m, &[layer_blocks], &motion, &post)?;
             files.extend(built.files);
@@ -422,6 +450,9 @@ fn run_layers(job_path: &Path, job: Job, out: &Path) -> Result<String, CliError>
         .transpose()?
         .ok_or_else(|| at("[machine]: missing table (a program needs a machine)".into()))?;
     let m = crate::machine::load(&file)?;
+    if job.layer.as_ref().is_some_and(Vec::is_empty) {
+        return Err(at("[[layer]]: no layers".into()));
+    }
     run_layered(
         job_path,
         Layered {
@@ -431,18 +462,35 @@ fn run_layers(job_path: &Path, job: Job, out: &Path) -> Result<String, CliError>
             machine: (m, file, method),
             motion: job.motion.unwrap_or_default(),
             post: job.post.unwrap_or_default(),
+            checks: job.checks.unwrap_or_default().allow,
+            warnings: Vec::new(),
+            summary: serde_json::Map::new(),
         },
         out,
     )
 }
 
-/// `formcam wind JOB.wind -o OUT`: a Cyclone/FiberPath job on the X/A/B winder,
-/// written for Marlin X/A/B unless the job says otherwise.
-pub fn run_wind_file(path: &Path, out: &Path) -> Result<String, CliError> {
-    let imported = crate::windfile::read(path)?;
+/// `formcam wind JOB.wind -o OUT [--eye-clearance MM]`: a Cyclone/FiberPath job
+/// on the X/A/B winder with its eye `eye_clearance` mm over the mandrel, written
+/// for Marlin X/A/B.
+///
+/// The format knows no eye: FiberPath's machines lay the band where `X` says
+/// and take up a little slack at the turn-arounds with their tensioner, so the
+/// eye's `slack` check is accepted (and reported); `allow` accepts more.
+pub fn run_wind_file(
+    path: &Path,
+    out: &Path,
+    eye_clearance: f64,
+    allow: &[Check],
+) -> Result<String, CliError> {
+    let imported = crate::windfile::read(path, eye_clearance)?;
     let label = PathBuf::from("machines/winder-xab.toml (built in)");
-    let m = crate::machine::parse(&label, crate::windfile::MACHINE)?;
-    run_layered(
+    let m = crate::machine::parse(&label, &crate::windfile::machine_text(imported.eye_radius)?)?;
+    let mut summary = serde_json::Map::new();
+    summary.insert("schema_version".into(), json!(imported.schema_version));
+    summary.insert("eye_radius_mm".into(), json!(imported.eye_radius));
+    summary.insert("eye_clearance_mm".into(), json!(imported.eye_clearance));
+    let line = run_layered(
         path,
         Layered {
             mandrel: imported.mandrel,
@@ -454,10 +502,20 @@ pub fn run_wind_file(path: &Path, out: &Path) -> Result<String, CliError> {
                 dialect: Some("marlin-xab".into()),
                 template: None,
             },
+            checks: [Check::Slack].iter().chain(allow).copied().collect(),
+            warnings: imported.warnings,
+            summary,
         },
         out,
-    )
+    )?;
+    Ok(format!(
+        "{line}; eye {:.1} mm from the axis ({:.1} mm over the mandrel)",
+        imported.eye_radius, imported.eye_clearance
+    ))
 }
+
+/// Output files: name and contents.
+type Files = Vec<(String, Vec<u8>)>;
 
 /// A multi-layer job, read from TOML or imported.
 struct Layered {
@@ -467,6 +525,12 @@ struct Layered {
     machine: (Machine, PathBuf, IkMethod),
     motion: MotionJob,
     post: PostJob,
+    /// Failed checks the job accepts.
+    checks: Vec<Check>,
+    /// Warnings found while reading the job.
+    warnings: Vec<String>,
+    /// Summary fields of the job's reader.
+    summary: serde_json::Map<String, serde_json::Value>,
 }
 
 fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliError> {
@@ -484,14 +548,15 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
         machine: (m, file, method),
         motion,
         post,
+        checks,
+        mut warnings,
+        summary: read_summary,
     } = job;
+    warnings.extend(mspec.warnings());
     let eye = eye
         .map(|e| e.spec(read))
         .transpose()
         .map_err(|e| at(e.to_string()))?;
-    if layers.is_empty() {
-        return Err(at("[[layer]]: no layers".into()));
-    }
     let tau = motion.tau_s.unwrap_or(0.004);
     // 1. Plan every layer in order: each on the mandrel grown by those before.
     enum LayerPlan {
@@ -519,9 +584,6 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
                     i + 1
                 ))
             })?;
-            if i == 0 {
-                return Err(at("layer[1]: a skip layer needs a layer before it".into()));
-            }
             plans.push(LayerPlan::Skip(turn));
             continue;
         }
@@ -541,6 +603,11 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
             _ => (mandrel, 0.0),
         };
         let spec = w.layer_spec(&mandrel).map_err(field)?;
+        warnings.extend(
+            w.warnings(&mandrel)
+                .into_iter()
+                .map(|s| s.replacen("winding.", &format!("layer[{}].", i + 1), 1)),
+        );
         let layer = plan_layer(&mandrel, &spec).map_err(field)?;
         // The layer's thickness where the mandrel is widest (one ply of the two
         // for a one-way hoop).
@@ -564,6 +631,7 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
     if m.roles.kind != MachineKind::Placement && eye.is_none() {
         return Err(at("[eye]: missing table".into()));
     }
+    warn(job_path, &warnings);
     // 2. Eye, axes and blocks of every winding layer, one thread per layer.
     let kind_of = |i: usize| layers[i].kind.clone().unwrap_or_else(|| "helical".into());
     let wind = |i: usize, mandrel: &Mandrel, z_shift: f64, layer: &Layer| {
@@ -589,7 +657,7 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
         }
         let track = solve(&m, &targets, method)
             .map_err(|e| at(format!("{label}: {}: {e}", file.display())))?;
-        let b = crate::program::layer_blocks(
+        let mut b = crate::program::layer_blocks(
             job_path,
             &label,
             &m,
@@ -598,7 +666,30 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
             &motion,
             layer.pattern.circuits,
         )?;
-        Ok::<_, CliError>((b, track.limits_ok(), track.max_residual_mm()))
+        // The layer's own outputs, as a single-layer job writes them.
+        let title = format!("{label}: {} mandrel, one pass", mandrel.kind());
+        let mut own: Files = vec![
+            ("path.csv".into(), path_csv(layer)),
+            (
+                "path.svg".into(),
+                crate::plot::layer_svg(&title, mandrel, layer)?,
+            ),
+        ];
+        if let Some(t) = &traj {
+            b.violated
+                .extend(crate::checks::eye_violations(&label, &t.violations));
+            own.push(("eye.csv".into(), eye_csv(t)));
+            own.push((
+                "eye.svg".into(),
+                crate::plot::eye_svg(&format!("{label}: payout eye over one circuit"), t)?,
+            ));
+        }
+        own.push(("axes.csv".into(), axes_csv(&m, &targets, &track)));
+        if !m.roles.band_path.is_empty() {
+            let passed = band_passed(&m, &targets, &track);
+            own.push(("band.csv".into(), band_csv(&m, &targets, &passed)));
+        }
+        Ok::<_, CliError>((b, track.limits_ok(), track.max_residual_mm(), own))
     };
     let wound: Vec<Option<Result<_, CliError>>> = std::thread::scope(|s| {
         let handles: Vec<_> = plans
@@ -631,6 +722,20 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
     let mut fibre = 0.0;
     let mut blocks: Vec<crate::program::LayerBlocks> = Vec::new();
     let mut per_layer = Vec::new();
+    let mut layer_files: Vec<(String, Files)> = Vec::new();
+    // Skip layers before the first winding layer turn the mandrel from where
+    // that layer starts (else from the machine's home).
+    let first_start: Vec<f64> = wound
+        .iter()
+        .flatten()
+        .find_map(|r| r.as_ref().ok().map(|(b, ..)| b.start.clone()))
+        .unwrap_or_else(|| {
+            m.axes
+                .iter()
+                .enumerate()
+                .map(|(a, ax)| nc(&m, a, ax.home))
+                .collect()
+        });
     for (i, (plan, result)) in plans.iter().zip(wound).enumerate() {
         let kind = kind_of(i);
         let label = format!("layer {} ({kind})", i + 1);
@@ -639,13 +744,7 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
                 let from = blocks
                     .last()
                     .and_then(|b| b.blocks.last())
-                    .map(|b| b.0.clone())
-                    .ok_or_else(|| {
-                        at(format!(
-                            "layer[{}]: a skip layer needs a layer before it",
-                            i + 1
-                        ))
-                    })?;
+                    .map_or_else(|| first_start.clone(), |b| b.0.clone());
                 let b = crate::program::skip_blocks(job_path, &label, &m, &from, *turn, tau)?;
                 per_layer.push(
                     json!({ "layer": i + 1, "kind": kind, "blocks": 1, "time_s": b.times[0] }),
@@ -661,7 +760,8 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
                 },
                 Some(result),
             ) => {
-                let (b, limits_ok, residual) = result?;
+                let (b, limits_ok, residual, own) = result?;
+                layer_files.push((format!("layer-{:02}", i + 1), own));
                 per_layer.push(json!({
                     "layer": i + 1,
                     "kind": kind,
@@ -688,6 +788,8 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
         .file_stem()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
+    let violated: Vec<_> = blocks.iter().flat_map(|b| b.violated.clone()).collect();
+    crate::checks::enforce(job_path, &checks, &violated)?;
     let built = crate::program::write_program(job_path, &stem, &m, &blocks, &motion, &post)?;
     let mut summary = serde_json::Map::new();
     summary.insert("job".into(), json!(job_path.display().to_string()));
@@ -699,11 +801,17 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
     );
     summary.insert("fibre_length_mm".into(), json!(fibre));
     summary.insert("per_layer".into(), json!(per_layer));
+    summary.insert("warnings".into(), json!(warnings));
+    summary.extend(read_summary);
     summary.extend(built.summary);
     let json =
         serde_json::to_vec_pretty(&summary).map_err(|e| CliError(format!("summary.json: {e}")))?;
     let mut files = built.files;
+    files.push(("axes.csv".to_string(), built.program_axes));
     files.push(("summary.json".to_string(), json));
+    for (dir, own) in &layer_files {
+        write_all(&out.join(dir), own)?;
+    }
     write_all(out, &files)?;
     Ok(format!(
         "{}: {} on {}, fibre {:.1} m{}, {:.1} ms -> {}",
@@ -858,7 +966,15 @@ pub fn run_demo(examples: &Path, out: &Path) -> Result<(), CliError> {
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_default();
         if job.extension().is_some_and(|x| x == "wind") {
-            println!("{}", run_wind_file(job, &out.join(&name))?);
+            println!(
+                "{}",
+                run_wind_file(
+                    job,
+                    &out.join(&name),
+                    crate::windfile::EYE_CLEARANCE_MM,
+                    &[]
+                )?
+            );
             continue;
         }
         let text = fs::read_to_string(job)

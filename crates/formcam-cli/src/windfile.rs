@@ -1,225 +1,591 @@
 //! `.wind` jobs (the JSON format of Cyclone and FiberPath, schemaVersion 1.x),
 //! turned into a formcam job on the X/A/B winder with a Marlin X/A/B program.
 //!
+//! formcam reads `.wind` as a conforming 1.x consumer of the format's
+//! specification (1.3): any `1.<minor>` is read, an absent `schemaVersion` is
+//! 1.0, other majors are refused; members it does not know are ignored with a
+//! warning, and members that would change the geometry but that formcam does
+//! not wind (a `profile` mandrel, a non-zero `frictionLambda`) are refused. Every
+//! validation rule of the specification is applied, each error naming the
+//! member by its JSON path (`layers[1].windAngle`).
+//!
 //! Mapping: `mandrelParameters` → a cylinder (`diameter`, `windLength`) or a
-//! cone (`endDiameter`); `towParameters` → band width and thickness; `hoop` →
-//! a hoop layer; `helical` → `windAngle` (from the axis, as ours),
-//! `patternNumber`, `skipIndex`, `lockDegrees` as the least dwell at each end;
-//! `skip` → the mandrel turning `mandrelRotation` degrees. The eye runs parallel
-//! to the axis at the machine's eye radius; a `terminal` hoop is wound one way.
-//! `leadInMM`, `leadOutDegrees`, `skipInitialNearLock` and `defaultFeedRate`
-//! are read and checked but not used: the delivery head's rotation follows from the
-//! kinematics, the feeds from the machine's limits.
+//! reducing cone (`endDiameter`); `towParameters` → band width and thickness;
+//! `hoop` → a hoop layer (a `terminal` one wound one way); `helical` →
+//! `windAngle` (from the axis, as ours; 90° is the hoop), `patternNumber`,
+//! `skipIndex`, `lockDegrees` as the least dwell at each end; `skip` → the
+//! mandrel turning `mandrelRotation` degrees. The eye runs parallel to the axis
+//! just over the mandrel (its radius plus a clearance), as FiberPath's machines
+//! carry it: FiberPath's `X` is the band's own position. `leadInMM`,
+//! `leadOutDegrees`, `skipInitialNearLock` and `defaultFeedRate` are checked but
+//! not used: the delivery head's rotation follows from the kinematics, the feeds
+//! from the machine's limits.
 
 use std::fs;
 use std::path::Path;
 
 use formcam_winding::job::{EyeJob, MandrelSpec, WindingSpec};
-use serde::Deserialize;
+use serde_json::{Map, Value};
 
 use crate::CliError;
 
-/// The machine `.wind` jobs run on.
+/// The machine `.wind` jobs run on (its eye 250 mm from the axis; moved to the
+/// job's eye radius by [`machine_text`]).
 pub const MACHINE: &str = include_str!("../../../machines/winder-xab.toml");
-/// Its eye's distance from the spindle axis, mm.
-pub const EYE_RADIUS: f64 = 250.0;
+/// The latest version of the specification formcam reads: `(major, minor)`.
+pub const SPEC_VERSION: (u32, u32) = (1, 3);
+/// The eye's default clearance over the mandrel, mm: clear of the eye's own
+/// solid (a roller of 12 mm radius).
+pub const EYE_CLEARANCE_MM: f64 = 25.0;
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields, rename_all = "camelCase")]
-struct WindFile {
-    schema_version: Option<String>,
-    mandrel_parameters: MandrelParameters,
-    tow_parameters: TowParameters,
-    default_feed_rate: f64,
-    layers: Vec<Layer>,
-}
+/// The line of the built-in machine that places the eye's arm.
+const ARM_ORIGIN: &str = "origin = { xyz = [0.0, 250.0, 1000.0] }";
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields, rename_all = "camelCase")]
-struct MandrelParameters {
-    diameter: f64,
-    wind_length: f64,
-    end_diameter: Option<f64>,
-    profile: Option<serde_json::Value>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct TowParameters {
-    width: f64,
-    thickness: f64,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(tag = "windType", rename_all = "camelCase", deny_unknown_fields)]
-enum Layer {
-    Hoop {
-        #[serde(default)]
-        terminal: bool,
-    },
-    #[serde(rename_all = "camelCase")]
-    Helical {
-        wind_angle: f64,
-        pattern_number: u32,
-        skip_index: u32,
-        lock_degrees: f64,
-        #[serde(rename = "leadInMM")]
-        lead_in_mm: f64,
-        lead_out_degrees: f64,
-        /// Read, not used.
-        #[serde(default, rename = "skipInitialNearLock")]
-        _skip_initial_near_lock: bool,
-        #[serde(default)]
-        friction_lambda: f64,
-    },
-    #[serde(rename_all = "camelCase")]
-    Skip { mandrel_rotation: f64 },
+/// The X/A/B winder with its eye `eye_radius` mm from the spindle axis.
+pub fn machine_text(eye_radius: f64) -> Result<String, CliError> {
+    if MACHINE.matches(ARM_ORIGIN).count() != 1 {
+        return Err(CliError(
+            "machines/winder-xab.toml (built in): the eye's arm is not where the .wind reader \
+             expects it"
+                .into(),
+        ));
+    }
+    Ok(MACHINE.replace(
+        ARM_ORIGIN,
+        &format!("origin = {{ xyz = [0.0, {eye_radius}, 1000.0] }}"),
+    ))
 }
 
 /// The parts of a formcam job a `.wind` file gives.
+#[derive(Debug)]
 pub struct Imported {
     /// The mandrel.
     pub mandrel: MandrelSpec,
     /// The layers.
     pub layers: Vec<WindingSpec>,
-    /// The eye: parallel to the axis at the machine's eye radius.
+    /// The eye: parallel to the axis at [`Imported::eye_radius`].
     pub eye: EyeJob,
+    /// The eye's distance from the spindle axis, mm.
+    pub eye_radius: f64,
+    /// The eye's clearance over the mandrel's largest radius, mm.
+    pub eye_clearance: f64,
+    /// The document's `schemaVersion` (1.0 when absent).
+    pub schema_version: String,
+    /// Members ignored and other remarks, one line each.
+    pub warnings: Vec<String>,
 }
 
-/// Reads a `.wind` file; errors name the file and the field.
-pub fn read(path: &Path) -> Result<Imported, CliError> {
+/// Reads a `.wind` file with the eye `eye_clearance` mm over the mandrel;
+/// errors name the file and the member.
+pub fn read(path: &Path, eye_clearance: f64) -> Result<Imported, CliError> {
     let at = |msg: String| CliError(format!("{}: {msg}", path.display()));
     let text = fs::read_to_string(path).map_err(|e| at(format!("cannot read: {e}")))?;
-    let f: WindFile = serde_json::from_str(&text).map_err(|e| {
-        at(format!(
+    parse(&text, eye_clearance).map_err(at)
+}
+
+/// One JSON object being read: the members asked for are remembered, so that
+/// the others can be reported as unknown.
+struct Obj<'a> {
+    path: String,
+    map: &'a Map<String, Value>,
+    seen: Vec<&'static str>,
+}
+
+impl<'a> Obj<'a> {
+    fn new(path: &str, v: Option<&'a Value>) -> Result<Self, String> {
+        match v {
+            Some(Value::Object(map)) => Ok(Self {
+                path: path.to_string(),
+                map,
+                seen: Vec::new(),
+            }),
+            Some(_) => Err(format!("{path}: must be an object")),
+            None => Err(format!("{path}: missing (required)")),
+        }
+    }
+
+    fn name(&self, key: &str) -> String {
+        if self.path.is_empty() {
+            key.to_string()
+        } else {
+            format!("{}.{key}", self.path)
+        }
+    }
+
+    fn get(&mut self, key: &'static str) -> Option<&'a Value> {
+        self.seen.push(key);
+        self.map.get(key)
+    }
+
+    /// A missing required member; unknown members beside it are named, as they
+    /// may be it misspelt.
+    fn missing(&self, key: &str) -> String {
+        let unknown = self.unknown();
+        if unknown.is_empty() {
+            format!("{}: missing (required)", self.name(key))
+        } else {
+            format!(
+                "{}: missing (required; unknown members given: {})",
+                self.name(key),
+                unknown.join(", ")
+            )
+        }
+    }
+
+    fn number(&mut self, key: &'static str) -> Result<Option<f64>, String> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(v) => match v.as_f64() {
+                Some(x) if x.is_finite() => Ok(Some(x)),
+                _ => Err(format!("{}: must be a finite number", self.name(key))),
+            },
+        }
+    }
+
+    fn required(&mut self, key: &'static str) -> Result<f64, String> {
+        self.number(key)?.ok_or_else(|| self.missing(key))
+    }
+
+    /// A required number > 0.
+    fn positive(&mut self, key: &'static str, unit: &str) -> Result<f64, String> {
+        let v = self.required(key)?;
+        if v > 0.0 {
+            Ok(v)
+        } else {
+            Err(format!("{}: must be > 0 {unit}, got {v}", self.name(key)))
+        }
+    }
+
+    /// A required integer >= 1.
+    fn count(&mut self, key: &'static str) -> Result<u32, String> {
+        let v = self.required(key)?;
+        if v >= 1.0 && v.fract() == 0.0 && v <= f64::from(u32::MAX) {
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            Ok(v as u32)
+        } else {
+            Err(format!(
+                "{}: must be an integer >= 1, got {v}",
+                self.name(key)
+            ))
+        }
+    }
+
+    fn boolean(&mut self, key: &'static str) -> Result<Option<bool>, String> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(Value::Bool(b)) => Ok(Some(*b)),
+            Some(_) => Err(format!("{}: must be true or false", self.name(key))),
+        }
+    }
+
+    fn unknown(&self) -> Vec<String> {
+        self.map
+            .keys()
+            .filter(|k| !self.seen.contains(&k.as_str()))
+            .map(|k| self.name(k))
+            .collect()
+    }
+
+    /// Warnings for the members not read (the specification asks consumers
+    /// to ignore them).
+    fn ignored(&self, version: &str, out: &mut Vec<String>) {
+        for k in self.unknown() {
+            out.push(format!(
+                "{k}: not a member of .wind {}.{} (the document says {version}); ignored",
+                SPEC_VERSION.0, SPEC_VERSION.1
+            ));
+        }
+    }
+}
+
+fn gcd(a: u32, b: u32) -> u32 {
+    if b == 0 { a } else { gcd(b, a % b) }
+}
+
+/// The `schemaVersion` as `(major, minor)`: `1.<digits>`.
+fn version(v: Option<&Value>) -> Result<(String, u32), String> {
+    let text = match v {
+        None => return Ok(("1.0".into(), 0)),
+        Some(Value::String(s)) => s.trim().to_string(),
+        Some(_) => return Err("schemaVersion: must be a string such as \"1.3\"".into()),
+    };
+    let (major, minor) = text.split_once('.').unwrap_or((text.as_str(), ""));
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    if !digits(major) || !digits(minor) {
+        return Err(format!(
+            "schemaVersion: \"{text}\" is not a version <major>.<minor> (1.x is read)"
+        ));
+    }
+    if major.parse::<u32>().ok() != Some(SPEC_VERSION.0) {
+        return Err(format!(
+            "schemaVersion: \"{text}\" is not supported (1.x is; formcam reads the \
+             specification up to {}.{})",
+            SPEC_VERSION.0, SPEC_VERSION.1
+        ));
+    }
+    let minor = minor.parse::<u32>().unwrap_or(u32::MAX);
+    Ok((text, minor))
+}
+
+/// A helical layer's coverage rules: coprime pattern, the lead-in shorter than
+/// the wind length, the circuit count (`ceil(pi D cos(angle) / width)`)
+/// divisible by the pattern number, and for patterns of several circuits a
+/// `lockDegrees` that steps the circuits onto distinct slots.
+fn coverage(
+    field: &dyn Fn(&str) -> String,
+    h: &Helical,
+    diameter: f64,
+    wind_length: f64,
+    width: f64,
+) -> Result<(), String> {
+    let p = h.pattern_number;
+    if gcd(h.skip_index, p) != 1 {
+        return Err(format!(
+            "{}: {} and patternNumber {p} must be coprime (gcd {}) for full coverage",
+            field("skipIndex"),
+            h.skip_index,
+            gcd(h.skip_index, p)
+        ));
+    }
+    if h.lead_in_mm >= wind_length {
+        return Err(format!(
+            "{}: {} mm must be shorter than mandrelParameters.windLength ({wind_length} mm)",
+            field("leadInMM"),
+            h.lead_in_mm
+        ));
+    }
+    let circuits = (std::f64::consts::PI * diameter * h.wind_angle.to_radians().cos() / width
+        - 1e-9)
+        .ceil()
+        .max(0.0);
+    if circuits % f64::from(p) != 0.0 {
+        return Err(format!(
+            "{}: {p} does not divide the layer's {circuits} circuits (pi x diameter x \
+             cos(windAngle) / tow width, rounded up); change the angle, the pattern or the tow",
+            field("patternNumber")
+        ));
+    }
+    if p > 1 {
+        let slot = 360.0 / f64::from(p);
+        let half = slot / 2.0;
+        let advance = (2.0 * h.lock_degrees).rem_euclid(360.0);
+        let slots = advance / slot;
+        let nearest = || {
+            let k = (h.lock_degrees / half).floor().max(1.0);
+            format!("{}, {}", k * half, (k + 1.0) * half)
+        };
+        if (slots - slots.round()).abs() > 1e-6 {
+            return Err(format!(
+                "{}: {} deg must be a multiple of 180 / patternNumber = {half} deg (nearest: {})",
+                field("lockDegrees"),
+                h.lock_degrees,
+                nearest()
+            ));
+        }
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let stride = (slots.round() as u32 + h.skip_index) % p;
+        if gcd(stride, p) != 1 {
+            return Err(format!(
+                "{}: {} deg with skipIndex {} steps each circuit {stride} of {p} slots, which is \
+                 not coprime with patternNumber: circuits would lie on each other",
+                field("lockDegrees"),
+                h.lock_degrees,
+                h.skip_index
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The members of a helical layer.
+struct Helical {
+    wind_angle: f64,
+    pattern_number: u32,
+    skip_index: u32,
+    lock_degrees: f64,
+    lead_in_mm: f64,
+}
+
+/// Reads the text of a `.wind` document; errors name the member.
+pub fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
+    if !(eye_clearance.is_finite() && eye_clearance > 0.0) {
+        return Err(format!(
+            "--eye-clearance: must be a finite number > 0 mm, got {eye_clearance}"
+        ));
+    }
+    let doc: Value = serde_json::from_str(text).map_err(|e| {
+        format!(
             "{}:{}: {}",
             e.line(),
             e.column(),
             e.to_string().replace('\n', " ")
-        ))
+        )
     })?;
-    let version = f.schema_version.as_deref().unwrap_or("1.0");
-    let major = version.split('.').next().unwrap_or("");
-    if major != "1" {
-        return Err(at(format!(
-            "schemaVersion: \"{version}\" is not supported (1.x is)"
-        )));
-    }
-    let positive = |field: &str, v: f64| {
-        if v.is_finite() && v > 0.0 {
-            Ok(v)
-        } else {
-            Err(at(format!("{field}: must be a finite number > 0, got {v}")))
-        }
-    };
-    let m = &f.mandrel_parameters;
-    if m.profile.is_some() {
-        return Err(at(
-            "mandrelParameters.profile: nose profiles are not read yet (cylinders and cones are)"
-                .into(),
+    let mut root = Obj::new("", Some(&doc)).map_err(|_| "the document must be a JSON object")?;
+    let (version_text, minor) = version(root.get("schemaVersion"))?;
+    let mut warnings = Vec::new();
+    if minor > SPEC_VERSION.1 {
+        warnings.push(format!(
+            "schemaVersion: {version_text} is newer than the {}.{} formcam reads; members it \
+             does not know are ignored",
+            SPEC_VERSION.0, SPEC_VERSION.1
         ));
     }
-    let r0 = positive("mandrelParameters.diameter", m.diameter)? / 2.0;
-    let length = positive("mandrelParameters.windLength", m.wind_length)?;
-    positive("defaultFeedRate", f.default_feed_rate)?;
-    let mandrel = match m.end_diameter {
-        None => MandrelSpec {
-            kind: Some("cylinder".into()),
-            radius: Some(r0),
-            length: Some(length),
-            ..MandrelSpec::default()
-        },
-        Some(d) => MandrelSpec {
-            kind: Some("cone".into()),
-            radius_start: Some(r0),
-            radius_end: Some(positive("mandrelParameters.endDiameter", d)? / 2.0),
-            length: Some(length),
-            ..MandrelSpec::default()
-        },
+
+    // The mandrel.
+    let mut m = Obj::new("mandrelParameters", root.get("mandrelParameters"))?;
+    let diameter = m.positive("diameter", "mm")?;
+    let wind_length = m.positive("windLength", "mm")?;
+    let end_diameter = match m.number("endDiameter")? {
+        Some(e) if e <= 0.0 => {
+            return Err(format!(
+                "mandrelParameters.endDiameter: must be > 0 mm, got {e}"
+            ));
+        }
+        e => e,
     };
-    let width = positive("towParameters.width", f.tow_parameters.width)?;
-    let thickness = positive("towParameters.thickness", f.tow_parameters.thickness)?;
-    if f.layers.is_empty() {
-        return Err(at("layers: no layers".into()));
+    if let Some(profile) = m.get("profile") {
+        if end_diameter.is_some() {
+            return Err(
+                "mandrelParameters.profile: profile and endDiameter are mutually exclusive (a \
+                 profile defines the whole surface)"
+                    .into(),
+            );
+        }
+        let kind = profile.get("type").and_then(Value::as_str).unwrap_or("?");
+        return Err(format!(
+            "mandrelParameters.profile: a \"{kind}\" profile mandrel (1.2+) changes the \
+             geometry and formcam does not wind it yet (cylinders and reducing cones it does)"
+        ));
     }
+    let cone = match end_diameter {
+        Some(e) if e > diameter => {
+            return Err(format!(
+                "mandrelParameters.endDiameter: {e} mm > diameter {diameter} mm is an expanding \
+                 cone; .wind cones are reducing frustums only (endDiameter < diameter: mount the \
+                 large end at z = 0)"
+            ));
+        }
+        Some(e) if e < diameter => Some(e),
+        _ => None,
+    };
+    m.ignored(&version_text, &mut warnings);
+
+    // The tow and the feed.
+    let mut t = Obj::new("towParameters", root.get("towParameters"))?;
+    let width = t.positive("width", "mm")?;
+    let thickness = t.positive("thickness", "mm")?;
+    t.ignored(&version_text, &mut warnings);
+    root.positive("defaultFeedRate", "mm/min")?;
+
+    // The layers.
+    let layers = match root.get("layers") {
+        Some(Value::Array(a)) => a,
+        Some(_) => return Err("layers: must be an array".into()),
+        None => return Err(root.missing("layers")),
+    };
     let base = WindingSpec {
         band_width: Some(width),
         band_thickness: Some(thickness),
         ..WindingSpec::default()
     };
-    let mut layers = Vec::with_capacity(f.layers.len());
-    for (i, l) in f.layers.iter().enumerate() {
-        let field = |name: &str| format!("layers[{i}].{name}");
-        layers.push(match l {
-            Layer::Hoop { terminal } => WindingSpec {
+    let mut out = Vec::with_capacity(layers.len());
+    for (i, v) in layers.iter().enumerate() {
+        let mut l = Obj::new(&format!("layers[{i}]"), Some(v))?;
+        let path = l.path.clone();
+        let field = |name: &str| format!("{path}.{name}");
+        let kind = match l.get("windType") {
+            Some(Value::String(s)) => s.clone(),
+            Some(_) => return Err(format!("{}: must be a string", field("windType"))),
+            None => return Err(l.missing("windType")),
+        };
+        let hoop = |l: &mut Obj<'_>, terminal: bool| -> Result<WindingSpec, String> {
+            if cone.is_some() {
+                return Err(format!(
+                    "{}: a hoop layer on a cone is refused by the specification (a hoop is not a \
+                     geodesic of a cone)",
+                    l.path
+                ));
+            }
+            if terminal && i + 1 != layers.len() {
+                return Err(format!(
+                    "{}: a terminal hoop must be the last layer",
+                    field("terminal")
+                ));
+            }
+            Ok(WindingSpec {
                 kind: Some("hoop".into()),
                 one_way: terminal.then_some(true),
                 ..base.clone()
-            },
-            Layer::Helical {
-                wind_angle,
-                pattern_number,
-                skip_index,
-                lock_degrees,
-                lead_in_mm,
-                lead_out_degrees,
-                friction_lambda,
-                ..
-            } => {
-                positive(&field("windAngle"), *wind_angle)?;
-                if *wind_angle >= 90.0 {
-                    return Err(at(format!(
-                        "{}: {wind_angle} deg: a helical angle lies in (0, 90) degrees from the axis",
+            })
+        };
+        let spec = match kind.as_str() {
+            "hoop" => {
+                let terminal = l.boolean("terminal")?.unwrap_or(false);
+                hoop(&mut l, terminal)?
+            }
+            "helical" => {
+                let wind_angle = l.required("windAngle")?;
+                if !(wind_angle > 0.0 && wind_angle <= 90.0) {
+                    return Err(format!(
+                        "{}: {wind_angle} deg: a wind angle lies in (0, 90] degrees from the axis",
                         field("windAngle")
-                    )));
+                    ));
                 }
-                positive(&field("lockDegrees"), *lock_degrees)?;
-                positive(&field("leadInMM"), *lead_in_mm)?;
-                positive(&field("leadOutDegrees"), *lead_out_degrees)?;
-                if *friction_lambda != 0.0 {
-                    return Err(at(format!(
-                        "{}: non-geodesic helical layers are not read yet",
-                        field("frictionLambda")
-                    )));
+                let h = Helical {
+                    wind_angle,
+                    pattern_number: l.count("patternNumber")?,
+                    skip_index: l.count("skipIndex")?,
+                    lock_degrees: l.positive("lockDegrees", "deg")?,
+                    lead_in_mm: l.positive("leadInMM", "mm")?,
+                };
+                l.positive("leadOutDegrees", "deg")?;
+                l.boolean("skipInitialNearLock")?;
+                match l.number("frictionLambda")? {
+                    Some(f) if f < 0.0 => {
+                        return Err(format!(
+                            "{}: must be >= 0, got {f}",
+                            field("frictionLambda")
+                        ));
+                    }
+                    Some(f) if f != 0.0 => {
+                        return Err(format!(
+                            "{}: {f}: non-geodesic winding needs a profile mandrel; a {} is \
+                             wound geodesically (0)",
+                            field("frictionLambda"),
+                            if cone.is_some() { "cone" } else { "cylinder" }
+                        ));
+                    }
+                    _ => {}
                 }
-                WindingSpec {
-                    kind: Some("helical".into()),
-                    winding_angle_deg: Some(*wind_angle),
-                    pattern_number: Some(*pattern_number),
-                    skip_index: Some(*skip_index),
-                    dwell_min_deg: Some(*lock_degrees),
-                    ..base.clone()
+                if let Some(e) = cone
+                    && diameter * wind_angle.to_radians().sin() > e
+                {
+                    return Err(format!(
+                        "{}: {wind_angle} deg is too steep for the cone: its geodesic turns \
+                         before the small end (diameter x sin(windAngle) must be <= endDiameter; \
+                         at most {:.4} deg)",
+                        field("windAngle"),
+                        (e / diameter).asin().to_degrees()
+                    ));
+                }
+                coverage(&field, &h, diameter, wind_length, width)?;
+                if wind_angle == 90.0 {
+                    // The specification's limit of a helical layer: a hoop.
+                    hoop(&mut l, false)?
+                } else {
+                    WindingSpec {
+                        kind: Some("helical".into()),
+                        winding_angle_deg: Some(wind_angle),
+                        pattern_number: Some(h.pattern_number),
+                        skip_index: Some(h.skip_index),
+                        dwell_min_deg: Some(h.lock_degrees),
+                        ..base.clone()
+                    }
                 }
             }
-            Layer::Skip { mandrel_rotation } => {
-                if !mandrel_rotation.is_finite() {
-                    return Err(at(format!("{}: must be finite", field("mandrelRotation"))));
-                }
-                WindingSpec {
-                    kind: Some("skip".into()),
-                    mandrel_rotation_deg: Some(*mandrel_rotation),
-                    ..WindingSpec::default()
-                }
+            "skip" => WindingSpec {
+                kind: Some("skip".into()),
+                mandrel_rotation_deg: Some(l.required("mandrelRotation")?),
+                ..WindingSpec::default()
+            },
+            other => {
+                return Err(format!(
+                    "{}: \"{other}\" is not a layer type formcam winds (hoop, helical, skip)",
+                    field("windType")
+                ));
             }
-        });
+        };
+        l.ignored(&version_text, &mut warnings);
+        out.push(spec);
     }
-    if r0.max(m.end_diameter.unwrap_or(0.0) / 2.0) + 10.0 >= EYE_RADIUS {
-        return Err(at(format!(
-            "mandrelParameters.diameter: the X/A/B winder's eye runs {EYE_RADIUS} mm from the axis; \
-             mandrels up to {} mm in diameter fit",
-            2.0 * (EYE_RADIUS - 10.0)
-        )));
+    root.ignored(&version_text, &mut warnings);
+    if out.is_empty() {
+        warnings.push("layers: none; the program holds no motion".into());
     }
+
+    let r_max = diameter / 2.0;
+    let mandrel = match cone {
+        None => MandrelSpec {
+            kind: Some("cylinder".into()),
+            radius: Some(r_max),
+            length: Some(wind_length),
+            ..MandrelSpec::default()
+        },
+        Some(e) => MandrelSpec {
+            kind: Some("cone".into()),
+            radius_start: Some(r_max),
+            radius_end: Some(e / 2.0),
+            length: Some(wind_length),
+            ..MandrelSpec::default()
+        },
+    };
+    let eye_radius = r_max + eye_clearance;
     let eye = EyeJob {
         mode: Some("axis-parallel".into()),
-        radius: Some(EYE_RADIUS),
-        clearance: Some(10.0),
-        l_max: Some(4.0 * EYE_RADIUS + length),
+        radius: Some(eye_radius),
+        // The laid band may come up to half the clearance.
+        clearance: Some(eye_clearance / 2.0),
+        // The format knows no free-length limit.
+        l_max: Some(1.0e6),
         ..EyeJob::default()
     };
     Ok(Imported {
         mandrel,
-        layers,
+        layers: out,
         eye,
+        eye_radius,
+        eye_clearance,
+        schema_version: version_text,
+        warnings,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+
+    #[test]
+    fn the_built_in_winder_carries_its_eye_at_the_radius_asked() {
+        for radius in [42.5, 250.0, 600.0] {
+            let text = machine_text(radius).unwrap();
+            let m = crate::machine::parse(Path::new("xab.toml"), &text).unwrap();
+            let q = m.home();
+            let eye = m.key_points(&q)[m.roles.payout];
+            let local = m.poses(&q)[m.roles.mandrel].inverse_transform_point(&eye);
+            let r = local.x.hypot(local.y);
+            assert!((r - radius).abs() < 1e-9, "{r} vs {radius}");
+        }
+    }
+
+    #[test]
+    fn versions_of_major_one_are_read() {
+        assert_eq!(version(None).unwrap(), ("1.0".into(), 0));
+        assert_eq!(version(Some(&Value::from("1.3"))).unwrap().1, 3);
+        assert_eq!(version(Some(&Value::from("1.27"))).unwrap().1, 27);
+        for bad in ["2.0", "0.9", "1", "1.x", "1.2.3", ""] {
+            assert!(version(Some(&Value::from(bad))).is_err(), "{bad}");
+        }
+        assert!(version(Some(&Value::from(1.0))).is_err());
+    }
+
+    #[test]
+    fn a_later_minor_warns_and_unknown_members_are_listed() {
+        let doc = r#"{"schemaVersion": "1.9", "extra": 1,
+            "mandrelParameters": {"diameter": 100, "windLength": 400},
+            "towParameters": {"width": 10, "thickness": 0.3},
+            "defaultFeedRate": 1500, "layers": [{"windType": "hoop", "tension": 3}]}"#;
+        let i = parse(doc, EYE_CLEARANCE_MM).unwrap();
+        assert_eq!(i.schema_version, "1.9");
+        assert_eq!(i.eye_radius, 75.0);
+        assert_eq!(i.warnings.len(), 3, "{:?}", i.warnings);
+        assert!(i.warnings[0].starts_with("schemaVersion"));
+        assert!(
+            i.warnings
+                .iter()
+                .any(|w| w.starts_with("layers[0].tension"))
+        );
+        assert!(i.warnings.iter().any(|w| w.starts_with("extra")));
+    }
 }

@@ -116,6 +116,25 @@ impl DressJob {
         })
     }
 
+    /// Values that are allowed but implausible (a wrong unit, most likely), as
+    /// lines naming the field: a feed under 1 mm/min (mm/s?).
+    pub fn warnings(&self) -> Vec<String> {
+        let p = &self.process;
+        [
+            ("process.feed_min", Some(p.feed_min)),
+            ("process.feed_max", Some(p.feed_max)),
+            ("process.feed_change_max", p.feed_change_max),
+        ]
+        .into_iter()
+        .filter_map(|(field, v)| match v {
+            Some(f) if f > 0.0 && f < 1.0 => Some(format!(
+                "{field}: {f} mm/min is under 1 mm/min; feeds are in mm/min (mm/s?)"
+            )),
+            _ => None,
+        })
+        .collect()
+    }
+
     /// The dressing this job asks for. `initial` is the contour of
     /// `process.initial_contour`, read by the caller (`None` when the job
     /// gives `process.depth`).
@@ -229,5 +248,19 @@ feed_max = 300.0
         assert!(e.starts_with("process.depth"), "{e}");
         let nan = DressJob::from_toml(&SEED.replace("r1 = 1.937", "r1 = nan")).unwrap();
         assert!(nan.spec(None).is_ok());
+    }
+
+    #[test]
+    fn feeds_under_one_mm_per_min_warn() {
+        assert!(DressJob::from_toml(SEED).unwrap().warnings().is_empty());
+        let slow = DressJob::from_toml(
+            &SEED
+                .replace("feed_min = 50.0", "feed_min = 0.8")
+                .replace("feed_max = 300.0", "feed_max = 5.0"),
+        )
+        .unwrap();
+        let w = slow.warnings();
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(w[0].starts_with("process.feed_min") && w[0].contains("mm/s?"));
     }
 }

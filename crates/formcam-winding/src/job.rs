@@ -452,6 +452,16 @@ impl WindingSpec {
                     winding_angle: deg.to_radians(),
                 }
             }
+            Mandrel::Vessel(_) | Mandrel::Profile(_) if self.winding_angle_deg.is_some() => {
+                return Err(WindingError::field(
+                    "winding.winding_angle_deg",
+                    format!(
+                        "does not apply to a {}: the angle follows from the polar openings \
+                         (Clairaut); leave it out",
+                        mandrel.kind()
+                    ),
+                ));
+            }
             Mandrel::Vessel(v) => Ends::Poles {
                 start: v.start_dome().polar_opening(),
                 end: v.end_dome().polar_opening(),
@@ -526,6 +536,50 @@ impl WindingSpec {
             minimax_nodes: defaults.minimax_nodes,
             turnaround,
         })
+    }
+}
+
+impl MandrelSpec {
+    /// Values that are allowed but implausible (a wrong unit, most likely), as
+    /// lines naming the field: a radius under 1 mm (metres?).
+    pub fn warnings(&self) -> Vec<String> {
+        [
+            ("mandrel.radius", self.radius),
+            ("mandrel.radius_start", self.radius_start),
+            ("mandrel.radius_end", self.radius_end),
+        ]
+        .into_iter()
+        .filter_map(|(field, v)| match v {
+            Some(r) if r > 0.0 && r < 1.0 => Some(format!(
+                "{field}: {r} mm is under 1 mm; radii are in mm (metres?)"
+            )),
+            _ => None,
+        })
+        .collect()
+    }
+}
+
+impl WindingSpec {
+    /// Values that are allowed but implausible on `mandrel`, as lines naming
+    /// the field: a band wider than half the circumference of a polar opening
+    /// (it cannot lie flat round the opening).
+    pub fn warnings(&self, mandrel: &Mandrel) -> Vec<String> {
+        let mut out = Vec::new();
+        let openings = match mandrel {
+            Mandrel::Vessel(v) => [v.start_dome().polar_opening(), v.end_dome().polar_opening()],
+            _ => return out,
+        };
+        let smallest = openings[0].min(openings[1]);
+        if let Some(w) = self.band_width
+            && w > std::f64::consts::PI * smallest
+        {
+            out.push(format!(
+                "winding.band_width: {w} mm is wider than half the circumference of the \
+                 {smallest} mm polar opening ({:.1} mm)",
+                std::f64::consts::PI * smallest
+            ));
+        }
+        out
     }
 }
 

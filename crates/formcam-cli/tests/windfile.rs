@@ -1,0 +1,450 @@
+//! `.wind` documents against the format's specification (schema 1.3): a corpus
+//! of valid documents that must plan and invalid ones that must be refused for
+//! their stated reason, written here from the specification's rules.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+use serde_json::{Value, json};
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("formcam-windfile-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Runs `formcam wind DOC.wind -o OUT EXTRA...`; returns the output and `OUT`.
+fn wind(name: &str, doc: &Value, extra: &[&str]) -> (Output, PathBuf) {
+    let dir = scratch(name);
+    let path = dir.join("job.wind");
+    std::fs::write(&path, serde_json::to_string_pretty(doc).unwrap()).unwrap();
+    let out = dir.join("out");
+    let st = Command::new(env!("CARGO_BIN_EXE_formcam"))
+        .arg("wind")
+        .arg(&path)
+        .arg("-o")
+        .arg(&out)
+        .args(extra)
+        .output()
+        .unwrap();
+    (st, out)
+}
+
+fn summary(out: &std::path::Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+}
+
+/// A valid 1.0 document: a cylinder 100 mm across, a hoop and a helical layer
+/// whose 24 circuits (pi 100 cos 41 deg / 10, rounded up) three divide, with a
+/// lockDegrees of a multiple of 60 deg stepping the circuits onto distinct slots.
+fn base() -> Value {
+    json!({
+        "schemaVersion": "1.0",
+        "mandrelParameters": { "diameter": 100, "windLength": 400 },
+        "towParameters": { "width": 10, "thickness": 0.3 },
+        "defaultFeedRate": 1500,
+        "layers": [
+            { "windType": "hoop", "terminal": false },
+            {
+                "windType": "helical",
+                "windAngle": 41,
+                "patternNumber": 3,
+                "skipIndex": 1,
+                "lockDegrees": 180,
+                "leadInMM": 10,
+                "leadOutDegrees": 10
+            }
+        ]
+    })
+}
+
+fn helical(angle: f64, pattern: u32, lock: f64) -> Value {
+    json!({
+        "windType": "helical",
+        "windAngle": angle,
+        "patternNumber": pattern,
+        "skipIndex": 1,
+        "lockDegrees": lock,
+        "leadInMM": 10,
+        "leadOutDegrees": 10
+    })
+}
+
+fn plans(name: &str, doc: &Value) -> (Value, String) {
+    plans_with(name, doc, &[])
+}
+
+fn plans_with(name: &str, doc: &Value, extra: &[&str]) -> (Value, String) {
+    let (st, out) = wind(name, doc, extra);
+    assert!(
+        st.status.success(),
+        "{name}: {}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    assert!(out.join("program.gcode").exists(), "{name}");
+    (summary(&out), String::from_utf8_lossy(&st.stderr).into())
+}
+
+#[test]
+fn valid_documents_plan() {
+    let mut corpus: Vec<(&str, Value)> = vec![("base", base())];
+    // An absent schemaVersion is 1.0.
+    let mut d = base();
+    d.as_object_mut().unwrap().remove("schemaVersion");
+    corpus.push(("no-version", d));
+    // A later minor of the same major is read.
+    let mut d = base();
+    d["schemaVersion"] = json!("1.12");
+    corpus.push(("later-minor", d));
+    // The first layer may be a skip: the mandrel turns before winding.
+    let mut d = base();
+    d["layers"] = json!([
+        { "windType": "skip", "mandrelRotation": 90 },
+        helical(41.0, 3, 180.0),
+        { "windType": "skip", "mandrelRotation": -45.5 },
+        { "windType": "hoop", "terminal": true }
+    ]);
+    corpus.push(("first-skip", d));
+    // A reducing cone (1.1) with a helical layer that reaches its small end
+    // (98 sin 30 deg = 49 <= 54), 45 circuits in patterns of three.
+    let mut d = base();
+    d["schemaVersion"] = json!("1.1");
+    d["mandrelParameters"] = json!({ "diameter": 98, "windLength": 120, "endDiameter": 54 });
+    d["towParameters"] = json!({ "width": 6, "thickness": 0.25 });
+    d["layers"] = json!([helical(30.0, 3, 180.0)]);
+    corpus.push(("cone", d));
+    // An endDiameter equal to the diameter is a cylinder.
+    let mut d = base();
+    d["mandrelParameters"]["endDiameter"] = json!(100);
+    corpus.push(("cone-of-no-taper", d));
+    // frictionLambda 0 (1.3) is the geodesic; windAngle 90 is the hoop limit.
+    let mut d = base();
+    d["schemaVersion"] = json!("1.3");
+    d["layers"][1]["frictionLambda"] = json!(0);
+    d["layers"][1]["skipInitialNearLock"] = json!(true);
+    d["layers"]
+        .as_array_mut()
+        .unwrap()
+        .push(helical(90.0, 1, 180.0));
+    corpus.push(("friction-zero-and-90", d));
+    // No layers: a program without motion.
+    let mut d = base();
+    d["layers"] = json!([]);
+    corpus.push(("no-layers", d));
+    for (name, doc) in &corpus {
+        let (s, _) = plans(name, doc);
+        assert_eq!(s["machine"], "X/A/B winder", "{name}");
+        assert!(s["checks_violated"].as_array().is_some(), "{name}");
+    }
+}
+
+#[test]
+fn unknown_members_are_ignored_with_a_warning() {
+    let mut d = base();
+    d["generator"] = json!("some CAD plug-in 4.2");
+    d["mandrelParameters"]["material"] = json!("aluminium");
+    d["layers"][1]["note"] = json!({ "text": "outer helical" });
+    let (s, stderr) = plans("unknown-members", &d);
+    let warnings: Vec<String> = s["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w.as_str().unwrap().to_string())
+        .collect();
+    for member in ["generator", "mandrelParameters.material", "layers[1].note"] {
+        assert!(
+            warnings.iter().any(|w| w.starts_with(member)),
+            "{member}: {warnings:?}"
+        );
+        assert!(stderr.contains(member), "{member}: {stderr}");
+    }
+}
+
+#[test]
+fn invalid_documents_are_refused_for_their_reason() {
+    type Edit = Box<dyn Fn(&mut Value)>;
+    let cases: Vec<(&str, Edit, &[&str])> = vec![
+        (
+            "major-2",
+            Box::new(|d| d["schemaVersion"] = json!("2.0")),
+            &["schemaVersion", "not supported"],
+        ),
+        (
+            "version-malformed",
+            Box::new(|d| d["schemaVersion"] = json!("1")),
+            &["schemaVersion"],
+        ),
+        (
+            "missing-diameter",
+            Box::new(|d| {
+                d["mandrelParameters"]
+                    .as_object_mut()
+                    .unwrap()
+                    .remove("diameter");
+            }),
+            &["mandrelParameters.diameter", "missing"],
+        ),
+        (
+            "zero-length",
+            Box::new(|d| d["mandrelParameters"]["windLength"] = json!(0)),
+            &["mandrelParameters.windLength", "> 0"],
+        ),
+        (
+            "width-as-text",
+            Box::new(|d| d["towParameters"]["width"] = json!("10")),
+            &["towParameters.width", "number"],
+        ),
+        (
+            "missing-feed",
+            Box::new(|d| {
+                d.as_object_mut().unwrap().remove("defaultFeedRate");
+            }),
+            &["defaultFeedRate", "missing"],
+        ),
+        (
+            "missing-layers",
+            Box::new(|d| {
+                d.as_object_mut().unwrap().remove("layers");
+            }),
+            &["layers", "missing"],
+        ),
+        (
+            "wind-type",
+            Box::new(|d| d["layers"][1]["windType"] = json!("polar")),
+            &["layers[1].windType", "polar"],
+        ),
+        (
+            "angle-zero",
+            Box::new(|d| d["layers"][1]["windAngle"] = json!(0)),
+            &["layers[1].windAngle", "(0, 90]"],
+        ),
+        (
+            "angle-over-90",
+            Box::new(|d| d["layers"][1]["windAngle"] = json!(95)),
+            &["layers[1].windAngle", "(0, 90]"],
+        ),
+        (
+            "pattern-fraction",
+            Box::new(|d| d["layers"][1]["patternNumber"] = json!(2.5)),
+            &["layers[1].patternNumber", "integer"],
+        ),
+        (
+            "skip-index-zero",
+            Box::new(|d| d["layers"][1]["skipIndex"] = json!(0)),
+            &["layers[1].skipIndex", "integer"],
+        ),
+        (
+            "not-coprime",
+            Box::new(|d| {
+                d["layers"][1]["patternNumber"] = json!(4);
+                d["layers"][1]["skipIndex"] = json!(2);
+            }),
+            &["layers[1].skipIndex", "coprime"],
+        ),
+        (
+            "lead-in-too-long",
+            Box::new(|d| d["layers"][1]["leadInMM"] = json!(400)),
+            &["layers[1].leadInMM", "windLength"],
+        ),
+        (
+            "circuits-not-divisible",
+            // 24 circuits: two divide them, five do not.
+            Box::new(|d| d["layers"][1]["patternNumber"] = json!(5)),
+            &["layers[1].patternNumber", "24 circuits"],
+        ),
+        (
+            "lock-not-a-multiple",
+            Box::new(|d| d["layers"][1]["lockDegrees"] = json!(100)),
+            &[
+                "layers[1].lockDegrees",
+                "multiple of 180 / patternNumber = 60",
+            ],
+        ),
+        (
+            "lock-aliases",
+            // 2 x 120 = 240 deg: two slots, plus the skip of one: three, all on one.
+            Box::new(|d| d["layers"][1]["lockDegrees"] = json!(120)),
+            &["layers[1].lockDegrees", "not coprime"],
+        ),
+        (
+            "lead-out-zero",
+            Box::new(|d| d["layers"][1]["leadOutDegrees"] = json!(0)),
+            &["layers[1].leadOutDegrees", "> 0"],
+        ),
+        (
+            "expanding-cone",
+            Box::new(|d| d["mandrelParameters"]["endDiameter"] = json!(120)),
+            &["mandrelParameters.endDiameter", "expanding cone"],
+        ),
+        (
+            "hoop-on-cone",
+            Box::new(|d| d["mandrelParameters"]["endDiameter"] = json!(90)),
+            &["layers[0]", "hoop layer on a cone"],
+        ),
+        (
+            "cone-unreachable",
+            Box::new(|d| {
+                d["mandrelParameters"]["endDiameter"] = json!(60);
+                d["layers"] = json!([helical(45.0, 1, 180.0)]);
+            }),
+            &["layers[0].windAngle", "too steep", "36.8699"],
+        ),
+        (
+            "profile",
+            Box::new(|d| d["mandrelParameters"]["profile"] = json!({ "type": "vonKarman" })),
+            &["mandrelParameters.profile", "vonKarman", "does not wind"],
+        ),
+        (
+            "profile-and-cone",
+            Box::new(|d| {
+                d["mandrelParameters"]["profile"] = json!({ "type": "vonKarman" });
+                d["mandrelParameters"]["endDiameter"] = json!(50);
+            }),
+            &["mandrelParameters.profile", "mutually exclusive"],
+        ),
+        (
+            "friction",
+            Box::new(|d| d["layers"][1]["frictionLambda"] = json!(0.1)),
+            &["layers[1].frictionLambda", "profile mandrel"],
+        ),
+        (
+            "friction-negative",
+            Box::new(|d| d["layers"][1]["frictionLambda"] = json!(-0.1)),
+            &["layers[1].frictionLambda", ">= 0"],
+        ),
+        (
+            "terminal-not-last",
+            Box::new(|d| d["layers"][0]["terminal"] = json!(true)),
+            &["layers[0].terminal", "last layer"],
+        ),
+        (
+            "terminal-not-bool",
+            Box::new(|d| d["layers"][0]["terminal"] = json!("yes")),
+            &["layers[0].terminal", "true or false"],
+        ),
+        (
+            "skip-without-rotation",
+            Box::new(|d| d["layers"][0] = json!({ "windType": "skip" })),
+            &["layers[0].mandrelRotation", "missing"],
+        ),
+        (
+            "misspelt-member",
+            Box::new(|d| {
+                d["towParameters"] = json!({ "widht": 10, "thickness": 0.3 });
+            }),
+            &["towParameters.width", "missing", "towParameters.widht"],
+        ),
+    ];
+    for (name, edit, want) in cases {
+        let mut d = base();
+        edit(&mut d);
+        let (st, out) = wind(name, &d, &[]);
+        let err = String::from_utf8_lossy(&st.stderr).trim_end().to_string();
+        assert!(!st.status.success(), "{name}: accepted");
+        assert!(!out.exists(), "{name}: wrote output");
+        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        assert!(err.contains("job.wind"), "{name}: {err}");
+        for w in want {
+            assert!(err.contains(w), "{name}: wants {w:?}: {err}");
+        }
+    }
+}
+
+/// Shallow helical layers on a small mandrel: the eye rides over the mandrel
+/// (its radius plus the clearance), so the carriage stays near the band and
+/// within its travel.
+#[test]
+fn shallow_helicals_on_small_mandrels_are_wound_with_the_eye_over_the_mandrel() {
+    let machine = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../machines/winder-xab.toml"),
+    )
+    .unwrap();
+    assert!(machine.contains("min_mm = -600.0") && machine.contains("max_mm = 3000.0"));
+    for angle in [20.0, 25.0, 30.0] {
+        let doc = json!({
+            "mandrelParameters": { "diameter": 60, "windLength": 300 },
+            "towParameters": { "width": 6, "thickness": 0.3 },
+            "defaultFeedRate": 3000,
+            "layers": [helical(angle, 1, 720.0)]
+        });
+        let name = format!("shallow-{angle}");
+        let (s, _) = plans(&name, &doc);
+        assert_eq!(s["eye_radius_mm"].as_f64().unwrap(), 30.0 + 25.0);
+        assert_eq!(s["eye_clearance_mm"].as_f64().unwrap(), 25.0);
+        let x = s["axis_ranges"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["axis"] == "X")
+            .unwrap();
+        let (lo, hi) = (x["min"].as_f64().unwrap(), x["max"].as_f64().unwrap());
+        // The carriage stays within its travel: the eye leads the band by its
+        // axial lead sqrt(R^2 - r^2) / tan(angle) (plus the turn-around on the
+        // tube's extension), 127 mm at 20 deg, where an eye 250 mm out would
+        // lead by 682 mm, beyond the carriage's -600 mm.
+        let lead = |r_eye: f64| (r_eye * r_eye - 30.0f64.powi(2)).sqrt() / angle.to_radians().tan();
+        let overrun = (-lo).max(hi - 300.0);
+        assert!(lo > -600.0 && hi < 3000.0, "{name}: X in [{lo}, {hi}]");
+        assert!(
+            overrun > lead(55.0) && overrun < lead(55.0) + 60.0,
+            "{name}: X in [{lo}, {hi}], lead {}",
+            lead(55.0)
+        );
+        assert!(lead(250.0) > 4.0 * lead(55.0));
+        // Only the eye's slack may be accepted for a .wind job, and it is said.
+        for v in s["checks_violated"].as_array().unwrap() {
+            assert_eq!(v["check"], "slack", "{name}: {v}");
+        }
+    }
+    let doc = json!({
+        "mandrelParameters": { "diameter": 60, "windLength": 300 },
+        "towParameters": { "width": 6, "thickness": 0.3 },
+        "defaultFeedRate": 3000,
+        "layers": [helical(25.0, 1, 720.0)]
+    });
+    let (s, _) = plans_with("clearance-40", &doc, &["--eye-clearance", "40"]);
+    assert_eq!(s["eye_radius_mm"].as_f64().unwrap(), 70.0);
+    let (st, out) = wind("clearance-0", &doc, &["--eye-clearance", "0"]);
+    assert!(!st.status.success() && !out.exists());
+    assert!(String::from_utf8_lossy(&st.stderr).contains("--eye-clearance"));
+}
+
+/// An accepted failed check is named in the summary and in the program's header.
+#[test]
+fn accepted_slack_is_reported_in_the_summary_and_the_header() {
+    // A short lock lets the band go slack at the turn-arounds.
+    let doc = json!({
+        "mandrelParameters": { "diameter": 60, "windLength": 300 },
+        "towParameters": { "width": 6, "thickness": 0.3 },
+        "defaultFeedRate": 3000,
+        "layers": [helical(20.0, 1, 180.0)]
+    });
+    let (st, out) = wind("allow-typo", &doc, &["--allow", "timing,slak"]);
+    assert!(!st.status.success() && !out.exists());
+    assert!(String::from_utf8_lossy(&st.stderr).contains("slak"));
+    let (st, _) = wind("allow-more", &doc, &["--allow", "timing,limits"]);
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    let (st, out) = wind("slack", &doc, &[]);
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    let s = summary(&out);
+    assert_eq!(s["checks_accepted"], json!(["slack"]));
+    let program = std::fs::read_to_string(out.join("program.gcode")).unwrap();
+    let header: Vec<&str> = program.lines().take(10).collect();
+    assert!(
+        header
+            .iter()
+            .any(|l| l.contains("checks accepted as violated") && l.contains("slack")),
+        "{header:?}"
+    );
+}

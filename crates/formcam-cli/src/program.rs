@@ -475,6 +475,13 @@ pub fn write_program(
                 .map_err(|e| here(format!("post.template: cannot read {}: {e}", p.display())))?;
             let tpl =
                 Template::from_toml(&src).map_err(|e| CliError(format!("{}: {e}", p.display())))?;
+            // Modulo axes within 100 turns where the template re-zeroes them.
+            let program = match tpl.modulo_style() {
+                Some(style) => {
+                    keep_within_turns(&program, style).map_err(|e| here(format!("post: {e}")))?
+                }
+                None => program,
+            };
             write_template(&program, &tpl, &mut text)
                 .map_err(|e| CliError(format!("{}: {e}", p.display())))?;
             tpl.extension().to_string()

@@ -8,6 +8,7 @@
 //! block = "{n} L {axes} F{f}"          # linear blocks
 //! inverse = "{n} L {axes} FT{t}"       # optional: inverse-time blocks (else `block`)
 //! footer = "{n} END PGM {name} MM"     # written once at the end
+//! rezero = "{n} ; preset {axes}"       # optional: re-zeroes the modulo axes
 //! decimals_mm = 3                      # optional, default 3
 //! decimals_deg = 4                     # optional, default 4
 //! signed = true                        # optional: `X+12.5`, default false
@@ -32,6 +33,14 @@
 //! | `{fi}` | inverse-time `F = 60 / t` (1/min); empty otherwise | `block`, `rapid`, `inverse` |
 //! | `{t}` | block time in s where known ([`Program::block_time_s`]); empty otherwise | `block`, `rapid`, `inverse` |
 //!
+//! With `rezero`, modulo rotary axes ([`crate::modulo`]) are re-zeroed:
+//! before a block marked [`Block::rezero`](crate::Block::rezero) the field is
+//! written with `{axes}` the modulo axes and their angles within the turn
+//! (`{A}` one of them; `{comment}`, `{f}`, `{fi}`, `{t}` empty), and every
+//! later value of those axes is the angle less the re-zeroed turns (the
+//! program must keep the bound: [`Template::modulo_style`]). Without it they
+//! are written unwound.
+//!
 //! `{{` and `}}` write braces. A placeholder that is not known, or not known
 //! in its field, is an error when the template is read. An axis placeholder
 //! is an upper-case NC name (`[A-Z][A-Z0-9_]*`), and a key of `axis_letters`
@@ -43,6 +52,7 @@ use std::path::Path;
 
 use serde::Deserialize;
 
+use crate::modulo::{self, ModuloStyle};
 use crate::num::{self, Out};
 use crate::program::nc_travel;
 use crate::{Feed, Motion, NcError, Program};
@@ -63,6 +73,8 @@ struct TemplateFile {
     inverse: Option<String>,
     #[serde(default)]
     footer: String,
+    #[serde(default)]
+    rezero: Option<String>,
     #[serde(default = "default_mm")]
     decimals_mm: u32,
     #[serde(default = "default_deg")]
@@ -152,6 +164,7 @@ pub struct Template {
     block: Field,
     inverse: Option<Field>,
     footer: Field,
+    rezero: Option<Field>,
     decimals_mm: u32,
     decimals_deg: u32,
     signed: bool,
@@ -205,6 +218,11 @@ impl Template {
                 .map(|t| parse("inverse", t, Scope::Block))
                 .transpose()?,
             footer: parse("footer", &f.footer, Scope::Frame)?,
+            rezero: f
+                .rezero
+                .as_deref()
+                .map(|t| parse("rezero", t, Scope::Block))
+                .transpose()?,
             extension: f.extension,
             decimals_mm: f.decimals_mm,
             decimals_deg: f.decimals_deg,
@@ -228,6 +246,12 @@ impl Template {
         })
     }
 
+    /// How it keeps modulo axes within the bound: re-zeroing when it has a
+    /// `rezero` field, else not at all (`None`: written unwound).
+    pub fn modulo_style(&self) -> Option<ModuloStyle> {
+        self.rezero.as_ref().map(|_| ModuloStyle::Rezero)
+    }
+
     /// The file extension of the programs it writes, without the dot.
     pub fn extension(&self) -> &str {
         &self.extension
@@ -239,6 +263,7 @@ impl Template {
             .chain(self.comment.iter())
             .chain(self.rapid.iter())
             .chain(self.inverse.iter())
+            .chain(self.rezero.iter())
     }
 }
 
@@ -323,6 +348,9 @@ fn parse_field(
 struct BlockCtx<'a> {
     index: usize,
     comment: &'a str,
+    /// The re-zero before block `index`: the modulo axes where the block
+    /// before ends.
+    rezero: bool,
 }
 
 /// The writer's running state.
@@ -333,16 +361,58 @@ struct Writer<'a> {
     axes: Vec<(&'a str, u32)>,
     /// Last printed scaled values for modal `{axes}`.
     last: Vec<Option<i64>>,
+    /// The re-zeroed whole turns per axis, scaled by its decimals.
+    off: Vec<i64>,
     line: u64,
 }
 
 impl Writer<'_> {
     fn value(&self, out: &mut Out, k: usize, v: f64) {
         let (_, d) = self.axes[k];
-        if self.t.signed && num::scaled(v, d).is_some_and(|s| s >= 0) {
-            out.c('+');
+        match num::scaled(v, d) {
+            Some(s) if self.off[k] != 0 => {
+                if self.t.signed && s - self.off[k] >= 0 {
+                    out.c('+');
+                }
+                num::push_scaled(out, s - self.off[k], d, false);
+            }
+            s => {
+                if self.t.signed && s.is_some_and(|s| s >= 0) {
+                    out.c('+');
+                }
+                num::push(out, v, d, false);
+            }
         }
-        num::push(out, v, d, false);
+    }
+
+    /// Re-zeroes the modulo axes where block `index - 1` ends.
+    fn rezero(&mut self, index: usize) {
+        let Some(before) = index.checked_sub(1).map(|i| &self.p.blocks[i].target) else {
+            return;
+        };
+        for (k, a) in self.p.axes.iter().enumerate() {
+            let d = self.axes[k].1;
+            if let (true, Some(s)) = (a.modulo, num::scaled(before[k], d)) {
+                let turn = 360 * 10i64.pow(d);
+                self.off[k] = s.div_euclid(turn) * turn;
+            }
+        }
+    }
+
+    /// The modulo axes and their re-zeroed angles where block `index - 1` ends.
+    fn rezero_words(&self, out: &mut Out, index: usize) {
+        let Some(before) = index.checked_sub(1).map(|i| &self.p.blocks[i].target) else {
+            return;
+        };
+        let mut any = false;
+        for k in (0..before.len()).filter(|&k| self.p.axes[k].modulo) {
+            if any {
+                out.c(' ');
+            }
+            out.s(self.axes[k].0);
+            self.value(out, k, before[k]);
+            any = true;
+        }
     }
 
     fn render(&mut self, out: &mut Out, field: &Field, blk: Option<&BlockCtx<'_>>) {
@@ -355,23 +425,24 @@ impl Writer<'_> {
                     self.line += self.t.line_step;
                 }
                 Piece::Comment => {
-                    if let Some(b) = blk {
+                    if let Some(b) = blk.filter(|b| !b.rezero) {
                         crate::post::push_comment_text(out, b.comment, false);
                     }
                 }
-                Piece::Axes => {
-                    if let Some(b) = blk {
-                        self.axes_words(out, b.index);
-                    }
-                }
+                Piece::Axes => match blk {
+                    Some(b) if b.rezero => self.rezero_words(out, b.index),
+                    Some(b) => self.axes_words(out, b.index),
+                    None => {}
+                },
                 Piece::Axis(a) => {
                     if let (Some(b), Some(k)) = (blk, self.p.axes.iter().position(|x| x.name == *a))
                     {
-                        self.value(out, k, self.p.blocks[b.index].target[k]);
+                        let i = if b.rezero { b.index - 1 } else { b.index };
+                        self.value(out, k, self.p.blocks[i].target[k]);
                     }
                 }
                 Piece::F | Piece::Fi | Piece::T => {
-                    if let Some(b) = blk {
+                    if let Some(b) = blk.filter(|b| !b.rezero) {
                         self.feed(out, piece, b.index);
                     }
                 }
@@ -430,13 +501,17 @@ impl Writer<'_> {
 /// Writes `program` with the user template `template`, appending to `out`.
 ///
 /// Fails, writing nothing, when the program is inconsistent
-/// ([`Program::validate`]) or an axis placeholder names no axis of it.
+/// ([`Program::validate`]), an axis placeholder names no axis of it, or (with
+/// a `rezero` field) a modulo axis would be written beyond the bound.
 pub fn write_template(
     program: &Program,
     template: &Template,
     out: &mut String,
 ) -> Result<(), NcError> {
     program.validate()?;
+    if let Some(style) = template.modulo_style() {
+        modulo::check(program, style)?;
+    }
     for field in template.fields() {
         for piece in &field.pieces {
             if let Piece::Axis(a) = piece
@@ -480,6 +555,7 @@ pub fn write_template(
             t: template,
             axes,
             last: vec![None; program.axes.len()],
+            off: vec![0; program.axes.len()],
             line: template.line_start,
         };
         out.reserve(256 + program.blocks.len() * (16 + 12 * program.axes.len()));
@@ -489,15 +565,26 @@ pub fn write_template(
                 let ctx = BlockCtx {
                     index: 0,
                     comment: text,
+                    rezero: false,
                 };
                 w.render(out, c, Some(&ctx));
             }
         }
         for (index, b) in program.blocks.iter().enumerate() {
+            if let (Some(r), true, true) = (&template.rezero, b.rezero, index > 0) {
+                w.rezero(index);
+                let ctx = BlockCtx {
+                    index,
+                    comment: "",
+                    rezero: true,
+                };
+                w.render(out, r, Some(&ctx));
+            }
             if let (Some(c), Some(text)) = (&template.comment, &b.comment) {
                 let ctx = BlockCtx {
                     index,
                     comment: text,
+                    rezero: false,
                 };
                 w.render(out, c, Some(&ctx));
             }
@@ -511,6 +598,7 @@ pub fn write_template(
             let ctx = BlockCtx {
                 index,
                 comment: b.comment.as_deref().unwrap_or(""),
+                rezero: false,
             };
             w.render(out, field, Some(&ctx));
         }

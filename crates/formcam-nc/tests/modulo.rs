@@ -199,3 +199,47 @@ proptest! {
         check_all(&winder(start, &steps, &rezero));
     }
 }
+
+#[test]
+fn a_template_with_a_rezero_field_re_zeroes() {
+    use formcam_nc::{Template, write_template};
+    let p = winder(
+        5.0,
+        &[(50_000.0, 1.0, 1.0, true), (10.0, 1.0, 1.0, true)],
+        &[],
+    );
+    let t = Template::from_toml(
+        "extension = \"t\"\nblock = \"L {axes} F{f}\"\nrezero = \"PRESET {axes} ({A})\"\n",
+    )
+    .unwrap();
+    assert_eq!(t.modulo_style(), Some(ModuloStyle::Rezero));
+    let q = keep_within_turns(&p, ModuloStyle::Rezero).unwrap();
+    let mut text = String::new();
+    write_template(&q, &t, &mut text).unwrap();
+    let presets: Vec<&str> = text.lines().filter(|l| l.starts_with("PRESET")).collect();
+    assert!(!presets.is_empty(), "{text}");
+    let largest = text
+        .lines()
+        .flat_map(|l| l.split(' '))
+        .filter_map(|w| w.strip_prefix('A'))
+        .map(|v| v.parse::<f64>().unwrap().abs())
+        .fold(0.0, f64::max);
+    assert!(largest <= BOUND_DEG, "{largest}");
+    // The re-zeroed angle is the one within the turn where the axis stands.
+    let k = q.blocks.iter().position(|b| b.rezero).unwrap();
+    let within = q.blocks[k - 1].target[0].rem_euclid(360.0);
+    let shown: f64 = presets[0]
+        .split(['A', ' '])
+        .nth(2)
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((shown - within).abs() < 1e-4, "{shown} vs {within}");
+    // Not prepared: refused; without the field: written unwound.
+    assert!(write_template(&p, &t, &mut String::new()).is_err());
+    let plain = Template::from_toml("extension = \"t\"\nblock = \"L {axes}\"\n").unwrap();
+    assert_eq!(plain.modulo_style(), None);
+    let mut text = String::new();
+    write_template(&p, &plain, &mut text).unwrap();
+    assert!(text.contains("A50005"));
+}

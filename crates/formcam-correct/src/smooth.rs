@@ -12,8 +12,9 @@
 //! preconditioned by a multigrid V-cycle (bilinear prolongation, Galerkin
 //! coarse levels, symmetric Gauss–Seidel, a dense Cholesky factor on the
 //! coarsest level), warm-started from the previous `lambda`, to an error
-//! below 1e-7 of the noise level: a dozen or two iterations whatever the
-//! grid's size, so the time grows with the number of points.
+//! below 1e-7 of the noise level (a fit that only steers the bisection stops
+//! as soon as its side of the target is sure): about ten iterations whatever
+//! the grid's size, so the time grows with the number of points.
 //! Where the report gives normals, the scalar normal deviation is smoothed;
 //! otherwise each component.
 
@@ -116,16 +117,6 @@ impl Level {
             None => f64::from(u8::from(self.col[k] as usize == i)),
         };
         m + lambda * self.rough[k]
-    }
-
-    /// `(M + lambda L) x` at row `i`.
-    #[inline(always)]
-    fn row_times(&self, i: usize, x: &[f64], lambda: f64) -> f64 {
-        let mut s = 0.0;
-        for k in self.ptr[i]..self.ptr[i + 1] {
-            s += self.entry(i, k, lambda) * x[self.col[k] as usize];
-        }
-        s
     }
 }
 
@@ -354,35 +345,47 @@ impl Hierarchy {
     }
 }
 
-/// `I + lambda L` ready to solve: the diagonals of every level and the
+/// `I + lambda L` ready to solve: the values of every level and the
 /// coarsest level's Cholesky factor.
 struct Operator<'h> {
     h: &'h Hierarchy,
-    lambda: f64,
+    /// `M + lambda L` per level, on the level's pattern.
+    vals: Vec<Vec<f64>>,
+    /// The diagonal per level.
     diag: Vec<Vec<f64>>,
     /// Lower triangle, row-major, of the coarsest level.
     chol: Vec<f64>,
 }
 
+/// When a solve may stop short of its tolerance: `stop(m, bound)` with the
+/// iterate and a bound on the 2-norm of its error.
+type Stop<'a> = &'a dyn Fn(&[f64], f64) -> bool;
+
 impl<'h> Operator<'h> {
     fn new(h: &'h Hierarchy, lambda: f64) -> Self {
-        let diag = h
+        let vals: Vec<Vec<f64>> = h
             .levels
             .iter()
             .map(|l| {
-                l.diag
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &k)| l.entry(i, k, lambda))
+                (0..l.n())
+                    .flat_map(|i| (l.ptr[i]..l.ptr[i + 1]).map(move |k| (i, k)))
+                    .map(|(i, k)| l.entry(i, k, lambda))
                     .collect()
             })
             .collect();
-        let last = &h.levels[h.levels.len() - 1];
+        let diag = h
+            .levels
+            .iter()
+            .zip(&vals)
+            .map(|(l, v)| l.diag.iter().map(|&k| v[k]).collect())
+            .collect();
+        let k = h.levels.len() - 1;
+        let (last, v) = (&h.levels[k], &vals[k]);
         let n = last.n();
         let mut a = vec![0.0; n * n];
         for i in 0..n {
             for k in last.ptr[i]..last.ptr[i + 1] {
-                a[i * n + last.col[k] as usize] = last.entry(i, k, lambda);
+                a[i * n + last.col[k] as usize] = v[k];
             }
         }
         // Cholesky in place (the matrix is I + lambda L projected: SPD).
@@ -403,28 +406,38 @@ impl<'h> Operator<'h> {
         }
         Self {
             h,
-            lambda,
+            vals,
             diag,
             chol: a,
         }
     }
 
+    /// Row `i` of level `k` times `x`.
+    #[inline(always)]
+    fn row_times(&self, k: usize, i: usize, x: &[f64]) -> f64 {
+        let l = &self.h.levels[k];
+        let (from, to) = (l.ptr[i], l.ptr[i + 1]);
+        l.col[from..to]
+            .iter()
+            .zip(&self.vals[k][from..to])
+            .map(|(&c, &a)| a * x[c as usize])
+            .sum()
+    }
+
     /// `y = A x` on the finest level.
     fn apply(&self, x: &[f64], y: &mut [f64]) {
-        let l = &self.h.levels[0];
         for (i, y) in y.iter_mut().enumerate() {
-            *y = l.row_times(i, x, self.lambda);
+            *y = self.row_times(0, i, x);
         }
     }
 
     /// One Gauss–Seidel sweep on level `k`, forward or backward.
     fn sweep(&self, k: usize, b: &[f64], x: &mut [f64], forward: bool) {
-        let l = &self.h.levels[k];
         let d = &self.diag[k];
-        let n = l.n();
+        let n = b.len();
         for step in 0..n {
             let i = if forward { step } else { n - 1 - step };
-            let r = b[i] - l.row_times(i, x, self.lambda);
+            let r = b[i] - self.row_times(k, i, x);
             x[i] += r / d[i];
         }
     }
@@ -457,9 +470,8 @@ impl<'h> Operator<'h> {
         for _ in 0..SWEEPS {
             self.sweep(k, b, x, true);
         }
-        let level = &h.levels[k];
         let r: Vec<f64> = (0..b.len())
-            .map(|i| b[i] - level.row_times(i, x, self.lambda))
+            .map(|i| b[i] - self.row_times(k, i, x))
             .collect();
         let restrict = &h.restrict[k];
         let bc: Vec<f64> = (0..restrict.rows())
@@ -475,104 +487,119 @@ impl<'h> Operator<'h> {
         }
     }
 
-    /// Solves `A m = d` from `m` by conjugate gradients preconditioned by a
-    /// V-cycle, until the energy norm of the error (estimated by
-    /// `sqrt(r . B r)`) is below `tol`; as `A >= I`, that bounds every
-    /// value's error too.
-    fn solve(&self, d: &[f64], m: &mut [f64], tol: f64) {
-        let n = d.len();
-        let mut r = vec![0.0; n];
-        self.apply(m, &mut r);
+    /// Solves `A m_f = d_f` for every field `f` (the fields stacked, each
+    /// `n` long: one block-diagonal system) from `m`, by conjugate gradients
+    /// preconditioned by a V-cycle per field, until the error's bound
+    /// `2 sqrt(r . B r)` is below `tol`, or `stop` says the iterate is good
+    /// enough. (`r . A^-1 r` is the squared energy norm of the error, and as
+    /// `A >= I` it bounds the squared 2-norm; the V-cycle `B` is close to
+    /// `A^-1`, `B A` having its eigenvalues in `(0, 1]` and mostly near 1,
+    /// and the factor 2 covers the rest.)
+    /// Returns the iterations taken.
+    fn solve(&self, d: &[f64], m: &mut [f64], tol: f64, stop: Stop<'_>) -> usize {
+        let n = self.h.levels[0].n();
+        let len = d.len();
+        let apply = |x: &[f64], y: &mut [f64]| {
+            for (x, y) in x.chunks(n).zip(y.chunks_mut(n)) {
+                self.apply(x, y);
+            }
+        };
+        let precondition = |r: &[f64], z: &mut [f64]| {
+            for (r, z) in r.chunks(n).zip(z.chunks_mut(n)) {
+                self.vcycle(0, r, z);
+            }
+        };
+        let mut r = vec![0.0; len];
+        apply(m, &mut r);
         for (r, d) in r.iter_mut().zip(d) {
             *r = d - *r;
         }
-        let mut z = vec![0.0; n];
-        self.vcycle(0, &r, &mut z);
+        let mut z = vec![0.0; len];
+        precondition(&r, &mut z);
         let mut p = z.clone();
         let mut rz: f64 = r.iter().zip(&z).map(|(a, b)| a * b).sum();
-        let mut q = vec![0.0; n];
-        for _ in 0..MAX_ITERATIONS {
-            if !rz.is_finite() || rz.sqrt() <= tol {
-                break;
+        let mut q = vec![0.0; len];
+        for it in 0..MAX_ITERATIONS {
+            let bound = 2.0 * rz.max(0.0).sqrt();
+            if !rz.is_finite() || bound <= tol || stop(m, bound) {
+                return it;
             }
-            self.apply(&p, &mut q);
+            apply(&p, &mut q);
             let pq: f64 = p.iter().zip(&q).map(|(a, b)| a * b).sum();
             if pq.is_nan() || pq <= 0.0 {
-                break;
+                return it;
             }
             let alpha = rz / pq;
-            for k in 0..n {
+            for k in 0..len {
                 m[k] += alpha * p[k];
                 r[k] -= alpha * q[k];
             }
-            self.vcycle(0, &r, &mut z);
+            precondition(&r, &mut z);
             let rz_new: f64 = r.iter().zip(&z).map(|(a, b)| a * b).sum();
             let beta = rz_new / rz;
             rz = rz_new;
-            for k in 0..n {
+            for k in 0..len {
                 p[k] = z[k] + beta * p[k];
             }
         }
+        MAX_ITERATIONS
     }
 }
 
 /// Smooths the fields `d` (each of `nu * nv` values) with one `lambda` chosen
-/// so the mean squared residual over all fields is `noise^2` (per value).
+/// so the mean squared residual over all fields is `noise^2` (per value):
+/// bisection on `log10 lambda` in `[-8, 10]` to 1e-3. A fit whose only use
+/// is the bisection's next step stops as soon as its residual is surely on
+/// one side of the target (the error bound of the solve against the
+/// distance to it); the fit returned is solved to 1e-7 of the noise level.
 fn fit(fields: &[Vec<f64>], nu: usize, nv: usize, noise: f64) -> (Vec<Vec<f64>>, f64, bool) {
     let count = (fields.len() * nu * nv) as f64;
     let hierarchy = Hierarchy::new(nu, nv);
-    // Every value within 1e-7 of the noise level of the exact fit.
+    let d: Vec<f64> = fields.concat();
     let tol = 1e-7 * noise;
-    let run = |lambda: f64, start: &[Vec<f64>]| {
-        let op = Operator::new(&hierarchy, lambda);
-        let out: Vec<Vec<f64>> = std::thread::scope(|sc| {
-            let jobs: Vec<_> = fields
-                .iter()
-                .zip(start)
-                .map(|(d, s)| {
-                    let op = &op;
-                    sc.spawn(move || {
-                        let mut m = s.clone();
-                        op.solve(d, &mut m, tol);
-                        m
-                    })
-                })
-                .collect();
-            jobs.into_iter()
-                .map(|j| j.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-                .collect()
-        });
-        let ms: f64 = fields
-            .iter()
-            .zip(&out)
-            .map(|(d, m)| d.iter().zip(m).map(|(a, b)| (a - b) * (a - b)).sum::<f64>())
-            .sum::<f64>()
-            / count;
-        (out, ms)
-    };
     let target = noise * noise;
+    // The root of the target's sum of squares.
+    let goal = (target * count).sqrt();
+    let residual = |m: &[f64]| {
+        d.iter()
+            .zip(m)
+            .map(|(a, b)| (a - b) * (a - b))
+            .sum::<f64>()
+            .sqrt()
+    };
+    // |(|d - m|) - (|d - m*|)| <= |m - m*| <= bound: the side is sure when
+    // the distance to the goal exceeds the bound.
+    let decided = |m: &[f64], bound: f64| (residual(m) - goal).abs() > 2.0 * bound;
+    let precise = |_: &[f64], _: f64| false;
+    let run = |lambda: f64, m: &mut Vec<f64>, stop: Stop<'_>| {
+        let op = Operator::new(&hierarchy, lambda);
+        op.solve(&d, m, tol, stop);
+        residual(m).powi(2) / count
+    };
+    let split = |m: Vec<f64>| -> Vec<Vec<f64>> { m.chunks(nu * nv).map(<[f64]>::to_vec).collect() };
     let (mut lo, mut hi) = (-8.0f64, 10.0f64);
-    let (hi_fit, hi_ms) = run(10f64.powf(hi), fields);
-    if hi_ms <= target {
-        return (hi_fit, 10f64.powf(hi), true);
+    let mut m = d.clone();
+    if run(10f64.powf(hi), &mut m, &decided) <= target {
+        run(10f64.powf(hi), &mut m, &precise);
+        return (split(m), 10f64.powf(hi), true);
     }
-    let mut best = (hi_fit, 10f64.powf(hi));
-    let mut warm = fields.to_vec();
+    let mut lambda = 10f64.powf(hi);
     for _ in 0..40 {
         let mid = 0.5 * (lo + hi);
-        let (m, ms) = run(10f64.powf(mid), &warm);
+        lambda = 10f64.powf(mid);
+        // The step after which the bisection ends is the fit returned.
+        let last = 0.5 * (hi - lo) < 1e-3;
+        let ms = run(lambda, &mut m, if last { &precise } else { &decided });
         if ms > target {
             hi = mid;
         } else {
             lo = mid;
         }
-        warm = m.clone();
-        best = (m, 10f64.powf(mid));
         if hi - lo < 1e-3 {
             break;
         }
     }
-    (best.0, best.1, false)
+    (split(m), lambda, false)
 }
 
 /// Replaces the grid's deviations by their smoothed values, for measurement
@@ -747,7 +774,7 @@ mod tests {
             let op = Operator::new(&h, lambda);
             let mut m = vec![0.0; d.len()];
             let tol = 1e-9;
-            op.solve(d, &mut m, tol);
+            op.solve(d, &mut m, tol, &|_, _| false);
             // The residual by the old matrix-free product.
             let mut am = vec![0.0; d.len()];
             reference::apply(&m, &mut am, g.nu, g.nv, lambda);

@@ -13,8 +13,9 @@
 //! coarse levels, symmetric Gauss–Seidel, a dense Cholesky factor on the
 //! coarsest level), warm-started from the previous `lambda`, to an error
 //! below 1e-7 of the noise level (a fit that only steers the bisection stops
-//! as soon as its side of the target is sure): about ten iterations whatever
-//! the grid's size, so the time grows with the number of points.
+//! as soon as its side of the target is sure): the time grows a little
+//! faster than the number of points (the weight chosen grows with the
+//! density of the points, and with it the iterations).
 //! Where the report gives normals, the scalar normal deviation is smoothed;
 //! otherwise each component.
 

@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 
 use formcam_correct::simulate::{LoopResult, Scenario, Shape};
 use formcam_correct::{
-    Corrector, Grid, Interpolation, Measurements, NodeTable, Options, Placement, Tool, Totals,
-    smooth,
+    CorrectError, Corrector, Grid, Interpolation, Measurements, NodeTable, Options, Placement,
+    Tool, Totals, check_displacement, smooth,
 };
 use formcam_nc::{Flavor, NodeKind, ToolpathOptions, read_toolpath};
 use plotters::prelude::*;
@@ -15,11 +15,15 @@ use serde_json::{Value, json};
 
 use crate::CliError;
 use crate::output::write_all;
-use crate::plot::{Series, panels_svg, svg_err};
+use crate::plot::{Series, panels_svg, svg_err, tick_label};
 
 /// Options of `formcam correct`.
 #[derive(Debug, clap::Args)]
 pub struct CorrectArgs {
+    /// A job file with a `[correct]` table holding these options (instead of
+    /// --measurements and --program); -o then names the output folder.
+    #[arg(conflicts_with_all = ["measurements", "program", "report"])]
+    pub job: Option<PathBuf>,
     /// The CMM report: CSV (section, point, x_nom, y_nom, z_nom, x_act,
     /// y_act, z_act[, nx, ny, nz]) or DMIS (.dmi, .dms, .dmo) point features.
     #[arg(long)]
@@ -67,7 +71,15 @@ pub struct CorrectArgs {
     /// all sections have the same count, else the largest count).
     #[arg(long)]
     pub points_per_section: Option<usize>,
+    /// The largest plausible deviation and node displacement, mm: a measured
+    /// deviation or a displacement beyond it stops the run (a typing error in
+    /// the report, or a part too far off to correct by re-milling).
+    #[arg(long, default_value_t = DEFAULT_MAX_DEVIATION_MM)]
+    pub max_deviation: f64,
 }
+
+/// The default of `--max-deviation`, mm.
+const DEFAULT_MAX_DEVIATION_MM: f64 = 5.0;
 
 fn read_text(path: &Path) -> Result<String, CliError> {
     fs::read_to_string(path).map_err(|e| CliError(format!("{}: cannot read: {e}", path.display())))
@@ -241,8 +253,33 @@ fn same_file(a: &Path, b: &Path) -> bool {
     }
 }
 
-/// Runs `formcam correct`; returns the one-line summary.
+/// Runs `formcam correct` (a job file, or the options on the command line);
+/// returns the one-line summary.
 pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
+    let Some(job) = &a.job else {
+        return run_args(a);
+    };
+    let out = a.output.clone().ok_or_else(|| {
+        CliError(format!(
+            "correct {}: give -o OUTDIR (the folder for the corrected program, report.json and the plots)",
+            job.display()
+        ))
+    })?;
+    let text = read_text(job)?;
+    let table: toml::Table = toml::from_str(&text)
+        .map_err(|e| CliError(format!("{}: {}", job.display(), e.message())))?;
+    if !is_job(&table) {
+        return Err(CliError(format!(
+            "{}: no [correct] table (a correction job names measurements and program there; \
+             see examples/correct-mould.toml)",
+            job.display()
+        )));
+    }
+    run_job_text(job, &text, &out)
+}
+
+/// Runs `formcam correct` with the options on the command line.
+fn run_args(a: &CorrectArgs) -> Result<String, CliError> {
     let need = |p: &Option<PathBuf>, flag: &str| {
         p.clone()
             .ok_or_else(|| CliError(format!("correct: give {flag} (see formcam correct --help)")))
@@ -285,7 +322,27 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
     if !(a.noise.is_finite() && a.noise >= 0.0) {
         return Err(CliError(format!("--noise {}: must be >= 0 mm", a.noise)));
     }
+    if !(a.max_deviation.is_finite() && a.max_deviation > 0.0) {
+        return Err(CliError(format!(
+            "--max-deviation {}: must be > 0 mm",
+            a.max_deviation
+        )));
+    }
     let measurements = read_measurements(&meas_path)?;
+    if let Err(CorrectError::Deviation {
+        section,
+        point,
+        deviation_mm,
+        ..
+    }) = measurements.check_deviation(a.max_deviation)
+    {
+        return Err(CliError(format!(
+            "{}: section `{section}`, point `{point}`: deviation {deviation_mm:.3} mm is beyond \
+             --max-deviation {} mm (a typing error in the report? nothing written)",
+            meas_path.display(),
+            a.max_deviation
+        )));
+    }
     let mut grid = Grid::from_measurements(&measurements, a.points_per_section)
         .map_err(|e| CliError(format!("{}: {e}", meas_path.display())))?;
     let smoothing = smooth(&mut grid, a.noise);
@@ -305,6 +362,27 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
         .map(|(p, _)| *p)
         .collect();
     let corrections = corrector.correct(&picked);
+    if let Err(CorrectError::Displacement {
+        node,
+        displacement_mm,
+        ..
+    }) = check_displacement(&corrections, a.max_deviation)
+    {
+        // The program line of the `node`-th movable node.
+        let k = movable
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| **m)
+            .nth(node)
+            .map_or(0, |(k, _)| k);
+        return Err(CliError(format!(
+            "{}: line {}: the node would move by {displacement_mm:.3} mm, beyond \
+             --max-deviation {} mm (nothing written)",
+            prog_path.display(),
+            source.line_of(k),
+            a.max_deviation
+        )));
+    }
     let mut new_positions = positions.clone();
     let mut outside_lines = Vec::new();
     let mut it = corrections.iter();
@@ -495,7 +573,8 @@ const PALETTE: [RGBColor; 8] = [
 ];
 
 /// The measured deviation along the surface normal, per section, against
-/// the arc length along the section (a legend up to 16 sections).
+/// the arc length along the section (a legend naming the sections, up to 16
+/// sections; none beyond).
 pub fn deviations_svg(m: &Measurements, grid: &Grid) -> Result<Vec<u8>, CliError> {
     let legend = m.sections.len() <= 16;
     let mut series: Vec<Series> = Vec::new();
@@ -517,7 +596,7 @@ pub fn deviations_svg(m: &Measurements, grid: &Grid) -> Result<Vec<u8>, CliError
             pts.push((acc, d[0] * n[0] + d[1] * n[1] + d[2] * n[2]));
         }
         let label = if legend {
-            s.name.clone()
+            format!("section {}", s.name)
         } else {
             String::new()
         };
@@ -560,7 +639,9 @@ pub fn displacement_svg(
             c.placement,
         ));
     }
-    let lim = pts.iter().fold(1e-9f64, |m, p| m.max(p.2.abs()));
+    // The colour scale's half range: the largest displacement, at least
+    // 1 um (a map of nothing moved is white, not noise).
+    let lim = pts.iter().fold(1e-3f64, |m, p| m.max(p.2.abs()));
     let (mut x0, mut x1, mut y0, mut y1) = (
         f64::INFINITY,
         f64::NEG_INFINITY,
@@ -581,49 +662,104 @@ pub fn displacement_svg(
         (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
     }
     let pad = 0.03 * (x1 - x0).max(y1 - y0).max(1e-9);
+    let colour = |d: f64| {
+        let f = (d / lim).clamp(-1.0, 1.0);
+        if f >= 0.0 {
+            RGBColor(255, (255.0 * (1.0 - f)) as u8, (255.0 * (1.0 - f)) as u8)
+        } else {
+            RGBColor((255.0 * (1.0 + f)) as u8, (255.0 * (1.0 + f)) as u8, 255)
+        }
+    };
+    let grey = RGBColor(190, 190, 190);
+    let (xr, yr) = ((x0 - pad, x1 + pad), (y0 - pad, y1 + pad));
+    let (fx, fy, fbar) = (
+        tick_label(xr.0, xr.1),
+        tick_label(yr.0, yr.1),
+        tick_label(-lim, lim),
+    );
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (900, 800)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (1000, 800)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(
-                format!(
-                    "Node displacement along the normal (blue -{lim:.3} .. red +{lim:.3} mm; grey: unchanged)"
-                ),
-                ("sans-serif", 16),
+        let root = root
+            .titled(
+                "Node displacement along the surface normal",
+                ("sans-serif", 18),
             )
+            .map_err(|e| err(e.to_string()))?;
+        let (map, bar) = root.split_horizontally(880);
+        let mut chart = ChartBuilder::on(&map)
             .margin(10)
             .x_label_area_size(35)
             .y_label_area_size(60)
-            .build_cartesian_2d((x0 - pad)..(x1 + pad), (y0 - pad)..(y1 + pad))
+            .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
             .map_err(|e| err(e.to_string()))?;
         chart
             .configure_mesh()
             .x_desc("x, mm")
             .y_desc("y, mm")
+            .x_label_formatter(&fx)
+            .y_label_formatter(&fy)
             .draw()
             .map_err(|e| err(e.to_string()))?;
         chart
-            .draw_series(pts.iter().map(|&(x, y, d, place)| {
-                let color = if matches!(place, Placement::Outside | Placement::Unknown) {
-                    RGBColor(190, 190, 190)
-                } else {
-                    let f = (d / lim).clamp(-1.0, 1.0);
-                    if f >= 0.0 {
-                        RGBColor(255, (255.0 * (1.0 - f)) as u8, (255.0 * (1.0 - f)) as u8)
-                    } else {
-                        RGBColor((255.0 * (1.0 + f)) as u8, (255.0 * (1.0 + f)) as u8, 255)
-                    }
-                };
-                Circle::new((x, y), 2, color.filled())
-            }))
+            .draw_series(
+                pts.iter()
+                    .filter(|p| !matches!(p.3, Placement::Outside | Placement::Unknown))
+                    .map(|&(x, y, d, _)| Circle::new((x, y), 2, colour(d).filled())),
+            )
             .map_err(|e| err(e.to_string()))?;
+        let unchanged: Vec<(f64, f64)> = pts
+            .iter()
+            .filter(|p| matches!(p.3, Placement::Outside | Placement::Unknown))
+            .map(|p| (p.0, p.1))
+            .collect();
+        if !unchanged.is_empty() {
+            chart
+                .draw_series(unchanged.iter().map(|&q| Circle::new(q, 2, grey.filled())))
+                .map_err(|e| err(e.to_string()))?
+                .label("node left unchanged (outside the measured area)")
+                .legend(move |(x, y)| Circle::new((x + 10, y), 3, grey.filled()));
+        }
         chart
             .draw_series(
                 grid.nominal
                     .iter()
                     .map(|q| Circle::new((q[0], q[1]), 2, BLACK.filled())),
             )
+            .map_err(|e| err(e.to_string()))?
+            .label("measured point")
+            .legend(|(x, y)| Circle::new((x + 10, y), 3, BLACK.filled()));
+        chart
+            .configure_series_labels()
+            .border_style(BLACK)
+            .background_style(WHITE.mix(0.8))
+            .draw()
+            .map_err(|e| err(e.to_string()))?;
+        // The colour bar: the displacement each colour stands for.
+        let mut scale = ChartBuilder::on(&bar)
+            .margin_top(10)
+            .margin_bottom(45)
+            .margin_right(5)
+            .y_label_area_size(70)
+            .build_cartesian_2d(0.0..1.0, -lim..lim)
+            .map_err(|e| err(e.to_string()))?;
+        scale
+            .configure_mesh()
+            .disable_x_mesh()
+            .disable_x_axis()
+            .disable_y_mesh()
+            .y_desc("displacement, mm")
+            .y_label_formatter(&fbar)
+            .draw()
+            .map_err(|e| err(e.to_string()))?;
+        let steps = 100;
+        scale
+            .draw_series((0..steps).map(|k| {
+                let a = -lim + 2.0 * lim * k as f64 / steps as f64;
+                let b = -lim + 2.0 * lim * (k + 1) as f64 / steps as f64;
+                Rectangle::new([(0.0, a), (1.0, b)], colour(0.5 * (a + b)).filled())
+            }))
             .map_err(|e| err(e.to_string()))?;
         root.present().map_err(|e| err(e.to_string()))?;
     }
@@ -633,7 +769,7 @@ pub fn displacement_svg(
 /// A correction job file: `[correct]` with the options of the command line
 /// (`measurements`, `program`, paths relative to the job's folder; `tool`,
 /// `interpolation`, `gain`, `margin_mm`, `noise_mm`, `arc_tolerance_mm`,
-/// `dialect`, `points_per_section`).
+/// `dialect`, `points_per_section`, `max_segment_mm`, `max_deviation_mm`).
 #[derive(Debug, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 struct JobFile {
@@ -660,6 +796,12 @@ struct JobTable {
     dialect: Option<String>,
     points_per_section: Option<usize>,
     max_segment_mm: Option<f64>,
+    #[serde(default = "default_max_deviation")]
+    max_deviation_mm: f64,
+}
+
+fn default_max_deviation() -> f64 {
+    DEFAULT_MAX_DEVIATION_MM
 }
 
 fn default_tool() -> String {
@@ -690,6 +832,7 @@ pub fn run_job_text(path: &Path, text: &str, out: &Path) -> Result<String, CliEr
             .map_or("nc".into(), |e| e.to_string_lossy().into_owned())
     );
     let args = CorrectArgs {
+        job: None,
         measurements: Some(base.join(&j.measurements)),
         program: Some(program),
         output: Some(out.join(name)),
@@ -703,6 +846,7 @@ pub fn run_job_text(path: &Path, text: &str, out: &Path) -> Result<String, CliEr
         dialect: j.dialect,
         points_per_section: j.points_per_section,
         max_segment: j.max_segment_mm,
+        max_deviation: j.max_deviation_mm,
     };
     // A fresh report per demo run: the history is for runs on real parts.
     let _ = fs::remove_file(out.join("report.json"));
@@ -970,7 +1114,7 @@ fn convergence_svg(r: &LoopResult) -> Result<Vec<u8>, CliError> {
     let n = r.rounds.len();
     let lines: [Line; 4] = [
         (
-            "true max",
+            "true max |deviation| (check grid)",
             r.rounds
                 .iter()
                 .enumerate()
@@ -979,7 +1123,7 @@ fn convergence_svg(r: &LoopResult) -> Result<Vec<u8>, CliError> {
             PALETTE[3],
         ),
         (
-            "true rms",
+            "true rms deviation (check grid)",
             r.rounds
                 .iter()
                 .enumerate()
@@ -988,7 +1132,7 @@ fn convergence_svg(r: &LoopResult) -> Result<Vec<u8>, CliError> {
             PALETTE[0],
         ),
         (
-            "measured max",
+            "measured max |deviation| (CMM)",
             r.rounds
                 .iter()
                 .enumerate()
@@ -997,7 +1141,7 @@ fn convergence_svg(r: &LoopResult) -> Result<Vec<u8>, CliError> {
             PALETTE[1],
         ),
         (
-            "measured rms",
+            "measured rms deviation (CMM)",
             r.rounds
                 .iter()
                 .enumerate()
@@ -1030,10 +1174,16 @@ fn convergence_svg(r: &LoopResult) -> Result<Vec<u8>, CliError> {
             .y_label_area_size(70)
             .build_cartesian_2d(-0.2..(n as f64 - 0.8), (lo..hi).log_scale())
             .map_err(|e| err(e.to_string()))?;
+        // Rounds are whole numbers: at most one label per round, no minor
+        // lines between them.
+        let round = |v: &f64| format!("{v:.0}");
         chart
             .configure_mesh()
             .x_desc("round (0: nominal program)")
             .y_desc("deviation, mm")
+            .x_labels(n.max(1))
+            .x_max_light_lines(1)
+            .x_label_formatter(&round)
             .draw()
             .map_err(|e| err(e.to_string()))?;
         for (name, pts, color) in lines {

@@ -49,14 +49,15 @@ enum Command {
         allow: Vec<checks::Check>,
     },
     /// Mould correction: `formcam correct --measurements cmm.csv --program
-    /// mould.nc -o corrected.nc`; `formcam correct simulate SCENARIO -o OUT`
+    /// mould.nc -o corrected.nc`, or `formcam correct JOB.toml -o OUTDIR` (a
+    /// `[correct]` job file); `formcam correct simulate SCENARIO -o OUT`
     /// runs the closed loop.
     #[command(args_conflicts_with_subcommands = true)]
     Correct {
         #[command(subcommand)]
         what: Option<CorrectCommand>,
         #[command(flatten)]
-        args: correct::CorrectArgs,
+        args: Box<correct::CorrectArgs>,
     },
     /// Wheel dressing: `formcam dress JOB -o OUT` writes the program of a
     /// dressing wheel forming a gothic-arch grinding wheel (ball-screw nuts),

@@ -33,6 +33,25 @@ fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
+/// The texts of an SVG document with their `text-anchor` (`middle` for the
+/// x axis' tick labels, `end` for the y axis').
+fn texts(svg: &str) -> Vec<(String, String)> {
+    svg.split("<text")
+        .skip(1)
+        .filter_map(|e| {
+            let (head, rest) = e.split_once('>')?;
+            let body = rest.split("</text>").next()?.trim().to_string();
+            let anchor = head
+                .split("text-anchor=\"")
+                .nth(1)
+                .and_then(|a| a.split('"').next())
+                .unwrap_or("start")
+                .to_string();
+            Some((anchor, body))
+        })
+        .collect()
+}
+
 /// A flat plate z = 0 measured in 3 sections x 4 points, everything 0.1 mm
 /// high along z; an ISO program with comments, modal words, an arc and a
 /// rapid move.
@@ -349,6 +368,15 @@ fn the_closed_loop_converges() {
     ] {
         assert!(out.join(f).exists(), "{f}");
     }
+    // Rounds are whole numbers: the x axis is labelled 0, 1, 2 only.
+    let svg = std::fs::read_to_string(out.join("convergence.svg")).unwrap();
+    let mut rounds_axis: Vec<String> = texts(&svg)
+        .into_iter()
+        .filter(|(anchor, t)| anchor == "middle" && t.parse::<f64>().is_ok())
+        .map(|(_, t)| t)
+        .collect();
+    rounds_axis.dedup();
+    assert_eq!(rounds_axis, ["0", "1", "2"], "{svg}");
     // A bad scenario names the field.
     std::fs::write(
         &scenario,
@@ -448,4 +476,143 @@ fn long_moves_are_split_on_request_so_the_correction_bends_them() {
         "{text}"
     );
     assert_eq!(json(dir.join("split.report.json"))["moves_split"], 1);
+}
+
+#[test]
+fn a_job_file_runs_and_its_plots_say_what_they_show() {
+    let dir = scratch("job");
+    let out = dir.join("out");
+    let o = run(&[
+        "correct",
+        s(&examples().join("correct-mould.toml")),
+        "-o",
+        s(&out),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r: serde_json::Value = json(out.join("report.json"));
+    assert_eq!(r["interpolation"], "bicubic");
+    assert_eq!(r["tool"]["radius_mm"], 6.0);
+    assert!(r["smoothing"]["noise_mm"].as_f64().unwrap() > 0.0);
+    assert!(out.join("corrected.nc").exists());
+    // The deviation plot's legend names sections; the displacement map has
+    // a colour bar and a legend for its markers.
+    let has = |svg: &str, want: &str| texts(svg).iter().any(|(_, t)| t == want);
+    let dev = std::fs::read_to_string(out.join("corrected.deviations.svg")).unwrap();
+    assert!(has(&dev, "section X0.0"), "{dev}");
+    let map = std::fs::read_to_string(out.join("corrected.displacement.svg")).unwrap();
+    for want in ["displacement, mm", "measured point"] {
+        assert!(has(&map, want), "{want} missing");
+    }
+    // The colour bar's labels are distinct numbers.
+    let bar: Vec<String> = texts(&map)
+        .into_iter()
+        .filter(|(a, t)| a == "end" && t.parse::<f64>().is_ok())
+        .map(|(_, t)| t)
+        .collect();
+    let mut unique = bar.clone();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(unique.len(), bar.len(), "{bar:?}");
+    // A job without [correct], and a job without -o, are one-line errors.
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, "[mandrel]\nkind = \"cylinder\"\n").unwrap();
+    let o = run(&["correct", s(&bad), "-o", s(&out)]);
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && e.contains("no [correct] table"),
+        "{e}"
+    );
+    let o = run(&["correct", s(&examples().join("correct-mould.toml"))]);
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && e.contains("give -o"), "{e}");
+}
+
+#[test]
+fn a_typing_error_in_the_report_stops_the_run() {
+    // 7.4206 typed as 74.206 in the first point of section X0.0.
+    let dir = scratch("typo");
+    let cmm = std::fs::read_to_string(examples().join("correct/cmm.csv")).unwrap();
+    let line = cmm.lines().nth(1).unwrap();
+    assert!(line.contains(",7.4206,"), "{line}");
+    let typo = cmm.replacen(",7.4206,", ",74.206,", 1);
+    let m = dir.join("cmm.csv");
+    std::fs::write(&m, typo).unwrap();
+    let out = dir.join("corrected.nc");
+    let args = |extra: &[&'static str]| {
+        let mut v = vec![
+            "correct".to_string(),
+            "--measurements".into(),
+            s(&m).into(),
+            "--program".into(),
+            s(&examples().join("correct/mould.nc")).into(),
+            "-o".into(),
+            s(&out).into(),
+            "--tool".into(),
+            "ball:6".into(),
+        ];
+        v.extend(extra.iter().map(|x| x.to_string()));
+        v
+    };
+    let o = formcam().args(args(&[])).output().unwrap();
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    assert!(
+        e.contains("section `X0.0`, point `1`: deviation 66.")
+            && e.contains("--max-deviation 5 mm"),
+        "{e}"
+    );
+    assert!(!out.exists());
+    // The limit is the user's: 100 mm lets it through (and nodes move by
+    // tens of millimetres), 50 mm does not.
+    let o = formcam()
+        .args(args(&["--max-deviation", "100"]))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = json(dir.join("corrected.report.json"));
+    assert!(r["max_displacement_mm"].as_f64().unwrap() > 10.0, "{r}");
+    let o = formcam()
+        .args(args(&["--max-deviation", "50"]))
+        .output()
+        .unwrap();
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(e.contains("cmm.csv: section `X0.0`, point `1`"), "{e}");
+}
+
+#[test]
+fn a_displacement_beyond_the_limit_names_the_program_line() {
+    // Every point 3 mm high (within 5 mm), corrected with gain 2: the nodes
+    // would move by 6 mm.
+    let dir = scratch("limit");
+    let (m, p) = plate(&dir);
+    let cmm = std::fs::read_to_string(&m)
+        .unwrap()
+        .replace(",0.1\n", ",3\n");
+    std::fs::write(&m, cmm).unwrap();
+    let out = dir.join("corrected.nc");
+    let base = [
+        "correct",
+        "--measurements",
+        s(&m),
+        "--program",
+        s(&p),
+        "-o",
+        s(&out),
+        "--gain",
+        "2",
+    ];
+    let o = run(&base);
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(
+        e.contains("plate.nc: line 6: the node would move by 6.000 mm"),
+        "{e}"
+    );
+    assert!(!out.exists());
+    let mut more = base.to_vec();
+    more.extend(["--max-deviation", "7"]);
+    let o = run(&more);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }

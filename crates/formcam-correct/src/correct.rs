@@ -4,7 +4,7 @@
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 
 use crate::patch::Foot;
-use crate::vec3::{V3, axpy, dot, norm, scale, sub};
+use crate::vec3::{V3, axpy, cross, dot, norm, scale, sub, unit};
 use crate::{CorrectError, Grid, Interpolation, Surface};
 
 /// The milling tool, as the program's nodes describe it.
@@ -199,6 +199,55 @@ impl<'g> Corrector<'g> {
         (i, j, foot)
     }
 
+    /// Whether the node at `p`, whose foot on the edge facet `(i, j)` is
+    /// `(s, t)`, lies over the measured area in plan: its `(x, y)` (a ball's
+    /// contact point, the centre less the radius along the grid's normal)
+    /// within `EDGE_TOLERANCE_MM` of the plan view of the facet or one of its
+    /// neighbours. The foot of the normal alone misses such nodes on curved
+    /// surfaces: the facet's edge is the chord of the curved edge, and the
+    /// foot of a node over the edge lands beyond the chord by the sag times
+    /// the slope. Facets steeper than 84 degrees (normal within 0.1 of
+    /// horizontal) have no useful plan view and are skipped.
+    fn within_plan(&self, i: usize, j: usize, s: f64, t: f64, p: V3) -> bool {
+        let g = self.surface.grid();
+        let q = match self.options.tool {
+            Tool::Point => p,
+            Tool::Ball { radius } => {
+                let corners = [
+                    g.normal_at(i, j),
+                    g.normal_at(i + 1, j),
+                    g.normal_at(i, j + 1),
+                    g.normal_at(i + 1, j + 1),
+                ];
+                let w = [(1.0 - s) * (1.0 - t), s * (1.0 - t), (1.0 - s) * t, s * t];
+                let n = unit(
+                    corners
+                        .iter()
+                        .zip(w)
+                        .fold([0.0; 3], |a, (n, w)| axpy(a, w, *n)),
+                );
+                let toward = dot(n, sub(p, self.surface.point(i, j, s, t)));
+                axpy(p, -radius * toward.signum(), n)
+            }
+        };
+        let (i0, j0) = (i.saturating_sub(1), j.saturating_sub(1));
+        let (i1, j1) = ((i + 1).min(g.nu - 2), (j + 1).min(g.nv - 2));
+        (j0..=j1).any(|b| {
+            (i0..=i1).any(|a| {
+                let c = [
+                    g.at(a, b),
+                    g.at(a + 1, b),
+                    g.at(a + 1, b + 1),
+                    g.at(a, b + 1),
+                ];
+                let n = cross(sub(c[2], c[0]), sub(c[3], c[1]));
+                n[2].abs() >= 0.1 * norm(n)
+                    && plan_distance_outside(c.map(|v| [v[0], v[1]]), [q[0], q[1]])
+                        <= EDGE_TOLERANCE_MM
+            })
+        })
+    }
+
     /// The correction of one node at `p` (mm).
     pub fn correct_node(&self, p: V3) -> NodeCorrection {
         self.correct_near(p, &mut None)
@@ -247,7 +296,7 @@ impl<'g> Corrector<'g> {
                 .f;
             let d = norm(sub(a, b));
             let size = norm(sub(g.at(i + 1, j + 1), g.at(i, j)));
-            if d > EDGE_TOLERANCE_MM + 1e-9 * size {
+            if d > EDGE_TOLERANCE_MM + 1e-9 * size && !self.within_plan(i, j, s, t, p) {
                 outside_mm = d;
                 ext = (free.s, free.t);
             }
@@ -321,6 +370,51 @@ impl<'g> Corrector<'g> {
             out
         })
     }
+}
+
+/// Checks every displacement against `limit_mm`: the first node beyond it
+/// is the error ([`CorrectError::Displacement`], its index in
+/// `corrections`).
+pub fn check_displacement(
+    corrections: &[NodeCorrection],
+    limit_mm: f64,
+) -> Result<(), CorrectError> {
+    for (node, c) in corrections.iter().enumerate() {
+        let d = norm(c.displacement);
+        if d.is_nan() || d > limit_mm {
+            return Err(CorrectError::Displacement {
+                node,
+                displacement_mm: d,
+                limit_mm,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// How far the plan point `q` lies outside the quadrilateral `c` (corners
+/// in order round it): 0 inside, else the distance to its nearest side.
+fn plan_distance_outside(c: [[f64; 2]; 4], q: [f64; 2]) -> f64 {
+    let mut inside = false;
+    let mut nearest = f64::INFINITY;
+    for k in 0..4 {
+        let (a, b) = (c[k], c[(k + 1) % 4]);
+        if (a[1] > q[1]) != (b[1] > q[1])
+            && q[0] < a[0] + (q[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1])
+        {
+            inside = !inside;
+        }
+        let e = [b[0] - a[0], b[1] - a[1]];
+        let len2 = e[0] * e[0] + e[1] * e[1];
+        let f = if len2 > 0.0 {
+            (((q[0] - a[0]) * e[0] + (q[1] - a[1]) * e[1]) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let d = [q[0] - a[0] - f * e[0], q[1] - a[1] - f * e[1]];
+        nearest = nearest.min((d[0] * d[0] + d[1] * d[1]).sqrt());
+    }
+    if inside { 0.0 } else { nearest }
 }
 
 /// Totals of a correction.

@@ -18,6 +18,34 @@ pub enum CorrectError {
     /// A scenario of the closed-loop check that cannot be used.
     #[error("{0}")]
     Scenario(String),
+    /// A measured deviation beyond the stated limit (a typing error in the
+    /// report, or a part too far off to correct by re-milling).
+    #[error(
+        "section `{section}`, point `{point}`: deviation {deviation_mm:.3} mm is beyond the \
+         limit of {limit_mm} mm"
+    )]
+    Deviation {
+        /// The section's name.
+        section: String,
+        /// The point's name.
+        point: String,
+        /// The length of its deviation, mm.
+        deviation_mm: f64,
+        /// The limit, mm.
+        limit_mm: f64,
+    },
+    /// A node displacement beyond the stated limit.
+    #[error(
+        "node {node}: displacement {displacement_mm:.3} mm is beyond the limit of {limit_mm} mm"
+    )]
+    Displacement {
+        /// The node's index among the corrected nodes (0-based).
+        node: usize,
+        /// The length of its displacement, mm.
+        displacement_mm: f64,
+        /// The limit, mm.
+        limit_mm: f64,
+    },
 }
 
 impl From<formcam_nc::NcError> for CorrectError {

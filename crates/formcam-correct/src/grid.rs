@@ -78,6 +78,24 @@ fn spatial_order(m: &Measurements) -> Result<Vec<usize>, CorrectError> {
     Ok(order)
 }
 
+/// The slope of a sequence of `n` points at `k`: central differences,
+/// second-order one-sided ones at the ends (first-order for two points).
+fn slope(at: impl Fn(usize) -> V3, k: usize, n: usize) -> V3 {
+    if n < 3 {
+        return sub(at(1), at(0));
+    }
+    let comb = |a: V3, b: V3, c: V3, s: f64| {
+        [0, 1, 2].map(|x| s * (-3.0 * a[x] + 4.0 * b[x] - c[x]) / 2.0)
+    };
+    if k == 0 {
+        comb(at(0), at(1), at(2), 1.0)
+    } else if k == n - 1 {
+        comb(at(n - 1), at(n - 2), at(n - 3), -1.0)
+    } else {
+        scale(sub(at(k + 1), at(k - 1)), 0.5)
+    }
+}
+
 impl Grid {
     /// Harmonises the sections: each one resampled by arc length to
     /// `points_per_section` points (`None`: as measured when every section
@@ -222,15 +240,14 @@ impl Grid {
 
     /// The unit surface normal at point `i` of section `j`: the report's
     /// normal where it gives one, else the cross product of the grid's
-    /// slopes (`along section x across sections`, by central differences).
+    /// slopes (`along section x across sections`, by central differences,
+    /// second-order one-sided ones on the edges).
     pub fn normal_at(&self, i: usize, j: usize) -> V3 {
         if let Some(n) = &self.normal {
             return n[j * self.nu + i];
         }
-        let (i0, i1) = (i.saturating_sub(1), (i + 1).min(self.nu - 1));
-        let (j0, j1) = (j.saturating_sub(1), (j + 1).min(self.nv - 1));
-        let du = sub(self.at(i1, j), self.at(i0, j));
-        let dv = sub(self.at(i, j1), self.at(i, j0));
+        let du = slope(|k| self.at(k, j), i, self.nu);
+        let dv = slope(|k| self.at(i, k), j, self.nv);
         unit(crate::vec3::cross(du, dv))
     }
 

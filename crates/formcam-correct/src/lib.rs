@@ -28,7 +28,10 @@ pub mod simulate;
 mod smooth;
 mod vec3;
 
-pub use correct::{Corrector, EDGE_TOLERANCE_MM, NodeCorrection, Options, Placement, Tool, Totals};
+pub use correct::{
+    Corrector, EDGE_TOLERANCE_MM, NodeCorrection, Options, Placement, Tool, Totals,
+    check_displacement,
+};
 pub use error::CorrectError;
 pub use grid::Grid;
 pub use measure::{MeasuredPoint, Measurements, Section};

@@ -71,6 +71,27 @@ impl Measurements {
             .fold(0.0, f64::max)
     }
 
+    /// Checks every point's deviation against `limit_mm`: the first point
+    /// beyond it (in the report's order) is the error, naming its section
+    /// and point.
+    pub fn check_deviation(&self, limit_mm: f64) -> Result<(), CorrectError> {
+        for s in &self.sections {
+            for p in &s.points {
+                let d = norm(p.deviation());
+                // A NaN deviation is beyond every limit.
+                if d.is_nan() || d > limit_mm {
+                    return Err(CorrectError::Deviation {
+                        section: s.name.clone(),
+                        point: p.point.clone(),
+                        deviation_mm: d,
+                        limit_mm,
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// The root mean square deviation, mm.
     pub fn rms_deviation(&self) -> f64 {
         let n = self.len();

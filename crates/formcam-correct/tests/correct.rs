@@ -304,3 +304,109 @@ fn bicubic_halves_the_residual_of_a_smooth_warp() {
         worst[1]
     );
 }
+
+#[test]
+fn nodes_over_the_edge_of_a_curved_panel_are_corrected_like_the_rest() {
+    // A panel measured edge to edge: 11 sections x 9 points over 200 x 150
+    // mm, strongly curved (a bowl, a dome and two saddles, R 300 mm along x,
+    // 250 mm along y), warped by up to 0.3 mm. The facets' edges are chords of the curved
+    // edges: a node on the surface over the edge has its foot on the chord
+    // patch a few hundredths of a millimetre beyond it. Nodes on a raster
+    // that includes the four edges, on the surface (point tool) and at a
+    // ball's centre (R 6).
+    let (l, w) = (200.0, 150.0);
+    let warp = |x: f64, y: f64| {
+        0.3 * (0.5
+            + 0.3 * (std::f64::consts::PI * x / l).sin()
+            + 0.2 * (x / l - 0.5) * (y / w - 0.5)
+            - 0.1 * (std::f64::consts::PI * y / w).cos())
+    };
+    let mut failed = Vec::new();
+    for sign in [(1.0, 1.0), (-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0)] {
+        let f = move |x: f64, y: f64| {
+            sign.0 * (x - l / 2.0).powi(2) / 600.0 + sign.1 * (y - w / 2.0).powi(2) / 500.0
+        };
+        let up = move |x: f64, y: f64| {
+            let n = [
+                -sign.0 * (x - l / 2.0) / 300.0,
+                -sign.1 * (y - w / 2.0) / 250.0,
+                1.0,
+            ];
+            let k = 1.0 / (n[0] * n[0] + n[1] * n[1] + 1.0).sqrt();
+            [n[0] * k, n[1] * k, k]
+        };
+        let g = grid(11, 9, (20.0, 150.0 / 8.0), f, |x, y| [0.0, 0.0, warp(x, y)]);
+        for tool in [Tool::Point, Tool::Ball { radius: 6.0 }] {
+            let r = match tool {
+                Tool::Ball { radius } => radius,
+                Tool::Point => 0.0,
+            };
+            let corr = Corrector::new(
+                &g,
+                Options {
+                    tool,
+                    ..Options::default()
+                },
+            )
+            .unwrap();
+            let (mut worst_edge, mut worst_inner, mut edge_nodes) = (0.0f64, 0.0f64, 0);
+            let mut outside = 0;
+            for a in 0..=40 {
+                for b in 0..=30 {
+                    let (x, y) = (l * a as f64 / 40.0, w * b as f64 / 30.0);
+                    let n = up(x, y);
+                    let p = [x + r * n[0], y + r * n[1], f(x, y) + r * n[2]];
+                    let c = corr.correct_node(p);
+                    if c.placement != Placement::Inside {
+                        outside += 1;
+                    }
+                    // The wanted displacement: against the warp (point), its
+                    // normal component along the normal (ball).
+                    let d = [0.0, 0.0, -warp(x, y)];
+                    let want = match tool {
+                        Tool::Point => d,
+                        Tool::Ball { .. } => {
+                            let k = n[2] * d[2];
+                            [k * n[0], k * n[1], k * n[2]]
+                        }
+                    };
+                    let e = (0..3)
+                        .map(|k| (c.displacement[k] - want[k]).powi(2))
+                        .sum::<f64>()
+                        .sqrt();
+                    if a == 0 || a == 40 || b == 0 || b == 30 {
+                        worst_edge = worst_edge.max(e);
+                        edge_nodes += 1;
+                    } else {
+                        worst_inner = worst_inner.max(e);
+                    }
+                }
+            }
+            assert_eq!(edge_nodes, 140);
+            // What is left is the patches' own error (chords for arcs, the
+            // facet's normal for the surface's), the same along the edges as
+            // inside.
+            if outside > 0 || worst_inner >= 0.02 || worst_edge >= 1.5 * worst_inner.max(0.005) {
+                failed.push(format!(
+                    "{sign:?}, {tool:?}: {outside} nodes outside, error edge {worst_edge} mm, \
+                     inner {worst_inner} mm"
+                ));
+            }
+        }
+    }
+    assert!(failed.is_empty(), "{failed:#?}");
+}
+
+#[test]
+fn nodes_beyond_the_edge_in_plan_stay_outside() {
+    // The same bowl: nodes 0.5 mm and 3 mm beyond the edge in plan, on the
+    // surface continued, are outside (corrected only within a margin).
+    let f = |x: f64, y: f64| (x - 100.0).powi(2) / 600.0 + (y - 75.0).powi(2) / 500.0;
+    let g = grid(11, 9, (20.0, 150.0 / 8.0), f, |_, _| [0.0, 0.0, 0.2]);
+    let corr = Corrector::new(&g, Options::default()).unwrap();
+    for (x, y) in [(200.5, 40.0), (203.0, 71.0), (-0.5, 20.0), (120.0, 153.0)] {
+        let c = corr.correct_node([x, y, f(x, y)]);
+        assert_eq!(c.placement, Placement::Outside, "({x}, {y}): {c:?}");
+        assert_eq!(c.displacement, [0.0; 3]);
+    }
+}

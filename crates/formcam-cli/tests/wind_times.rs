@@ -17,6 +17,9 @@ use formcam_motion::{AxisLimits, check_timing};
 /// the jump limits up to 18.6x before they were timed with the layers.
 const ISSUE_JOB: &str = r#"{"schemaVersion": "1.0", "mandrelParameters": {"diameter": 160, "windLength": 1200}, "towParameters": {"width": 5, "thickness": 0.3}, "defaultFeedRate": 2000, "layers": [{"windType": "hoop", "terminal": false}, {"windType": "helical", "windAngle": 57, "patternNumber": 5, "skipIndex": 1, "lockDegrees": 720, "leadInMM": 25, "leadOutDegrees": 60}, {"windType": "hoop", "terminal": false}, {"windType": "helical", "windAngle": 26, "patternNumber": 1, "skipIndex": 1, "lockDegrees": 540, "leadInMM": 25, "leadOutDegrees": 60}, {"windType": "hoop", "terminal": false}, {"windType": "helical", "windAngle": 45, "patternNumber": 2, "skipIndex": 1, "lockDegrees": 720, "leadInMM": 25, "leadOutDegrees": 60}, {"windType": "hoop", "terminal": false}, {"windType": "helical", "windAngle": 42, "patternNumber": 5, "skipIndex": 1, "lockDegrees": 720, "leadInMM": 25, "leadOutDegrees": 60}]}"#;
 
+/// The machine `.wind` jobs run on.
+const XAB: &str = include_str!("../../../machines/winder-xab.toml");
+
 fn scratch(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("formcam-times-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
@@ -55,7 +58,7 @@ fn wind(name: &str, job: &str) -> Option<Outcome> {
     assert!(st.status.success(), "{name}: {job}\n{stderr}");
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    check_program(&out);
+    check_program(&out, XAB);
     let _ = std::fs::remove_dir_all(&dir);
     let time = |k: &str| summary[k].as_f64().unwrap();
     assert_eq!(time("program_time_s"), time("program_time_global_s"));
@@ -75,9 +78,8 @@ fn wind(name: &str, job: &str) -> Option<Outcome> {
 /// program. Both files keep the spindle unwound (its re-zeroing is the
 /// post-processor's); its positions run to 1e6 degrees and carry about 1e-10
 /// degrees, so the times are lengthened by 1e-8 against that rounding.
-fn check_program(out: &Path) {
-    let machine =
-        Machine::from_toml(include_str!("../../../machines/winder-xab.toml")).expect("machine");
+fn check_program(out: &Path, machine: &str) {
+    let machine = Machine::from_toml(machine).expect("machine");
     let limits: Vec<AxisLimits> = machine
         .axes
         .iter()
@@ -262,4 +264,27 @@ fn a_thousand_larger_jobs() {
         worst.0, worst.1, largest.0, largest.1
     );
     assert!(slower.is_empty(), "global slower on {slower:?}");
+}
+
+/// A TOML job with a skip layer (the mandrel turns alone between two helical
+/// layers) on the 4-axis winder: the skip's turn and the moves between layers
+/// broke the jump limits up to 12x before the joins were timed.
+#[test]
+fn a_program_with_a_skip_layer_keeps_its_limits_across_the_joins() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let out = scratch("skip").join("out");
+    let st = Command::new(env!("CARGO_BIN_EXE_formcam"))
+        .arg("wind")
+        .arg(root.join("examples/tube-layers-4axis.toml"))
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        st.status.success(),
+        "{}",
+        String::from_utf8_lossy(&st.stderr)
+    );
+    check_program(&out, include_str!("../../../machines/winder-4axis.toml"));
+    let _ = std::fs::remove_dir_all(out.parent().unwrap());
 }

@@ -10,7 +10,7 @@ use formcam_machine::Target;
 use formcam_machine::ik::AxisTrack;
 use formcam_motion::{
     AxisLimits, Deviation, Timing, Tolerance, check_acceleration, check_timing, deltas, fit_blocks,
-    global, pairwise, preliminary_times, with_acceleration,
+    global, join_times, pairwise, preliminary_times, ramp_pieces, with_acceleration,
 };
 use formcam_nc::{
     AxisSpec, Block, Dialect, Feed, ModuloStyle, Program, Template, keep_within_turns, write,
@@ -62,6 +62,22 @@ pub struct Built {
     pub line: String,
     /// The axes over the whole program (`axes.csv` of a multi-layer job).
     pub program_axes: Vec<u8>,
+    /// The checks the whole program failed, its layers' and its own (the
+    /// joins' timing): written only when the job accepts them.
+    pub violated: Vec<Violated>,
+}
+
+/// A block of the program before the joins are timed.
+struct Pending {
+    target: Vec<f64>,
+    t_star: f64,
+    /// The block's `mu` as its layer timed it (1 for a move between layers).
+    cap: f64,
+    layer: usize,
+    /// Blocks of one part (a layer, or one move between layers) share it.
+    part: usize,
+    comment: Option<String>,
+    rezero: bool,
 }
 
 fn positive(job: &Path, field: &str, v: f64) -> Result<f64, CliError> {
@@ -348,13 +364,8 @@ pub fn write_program(
     let count: usize = layers.iter().map(|l| l.blocks.len()).sum();
     let mut program = Program::new(name, axes);
     let limits = axis_limits(m);
-    let mut csv = String::from("block,t");
-    for a in &m.axes {
-        let _ = write!(csv, ",{}", a.name);
-    }
-    csv.push_str(",layer,t_star,mu\n");
     let mut here_now: Option<Vec<f64>> = None;
-    let mut n = 0usize;
+    let mut pending_blocks: Vec<Pending> = Vec::with_capacity(count + layers.len());
     let mut transitions = 0.0;
     let mut pending: Option<String> = None;
     let mut carried = vec![0.0; m.axes.len()];
@@ -413,42 +424,95 @@ pub fn write_program(
                     })
                     .fold(tau, f64::max);
                 transitions += t;
-                let mut b = Block::linear(start.clone(), Feed::InverseTime(t))
-                    .with_comment(l.label.clone());
                 // Modulo axes are re-zeroed between layers.
-                b.rezero = true;
-                program.blocks.push(b);
+                pending_blocks.push(Pending {
+                    target: start.clone(),
+                    t_star: t,
+                    cap: 1.0,
+                    layer: li + 1,
+                    part: 2 * li,
+                    comment: Some(l.label.clone()),
+                    rezero: true,
+                });
             }
         }
-        for (target, t, t_star, mu) in &l.blocks {
-            n += 1;
-            let target = shifted(target);
-            let _ = write!(csv, "{n},{t}");
-            for v in &target {
-                let _ = write!(csv, ",{v}");
-            }
-            let _ = writeln!(csv, ",{},{t_star},{mu}", li + 1);
-            let mut block = Block::linear(target, Feed::InverseTime(*t));
-            if let Some(label) = pending.take() {
-                block = block.with_comment(label);
-                block.rezero = true;
-            }
-            program.blocks.push(block);
+        for (target, _, t_star, mu) in &l.blocks {
+            let label = pending.take();
+            pending_blocks.push(Pending {
+                target: shifted(target),
+                t_star: *t_star,
+                cap: *mu,
+                layer: li + 1,
+                part: 2 * li + 1,
+                rezero: label.is_some(),
+                comment: label,
+            });
         }
-        here_now = program.blocks.last().map(|b| b.target.clone());
+        here_now = pending_blocks
+            .last()
+            .map(|b| b.target.clone())
+            .or_else(|| program.blocks.last().map(|b| b.target.clone()));
     }
+    // The layers' circuits keep their times; the blocks round each join (and
+    // the program's start and end, from and to rest) are slowed until every
+    // jump holds across it.
+    let from = program.blocks.first().map(|b| b.target.clone());
+    let pending_blocks = ramps(m, from.as_deref(), pending_blocks, &limits, tau)
+        .map_err(|e| here(format!("motion: {e}")))?;
+    let d = program_deltas(m, from.as_deref(), &pending_blocks);
+    let t_star: Vec<f64> = pending_blocks.iter().map(|b| b.t_star).collect();
+    let cap: Vec<f64> = pending_blocks.iter().map(|b| b.cap).collect();
+    let joined =
+        join_times(&d, &t_star, &cap, &limits).map_err(|e| here(format!("motion: {e}")))?;
+    let mut program_violated = Vec::new();
+    if let Some((b, k, e)) = timing_from_rest(&d, &joined.times, &limits) {
+        program_violated.push(Violated {
+            check: Check::Timing,
+            layer: format!("layer {}", pending_blocks.get(b).map_or(0, |p| p.layer)),
+            detail: format!(
+                "break the velocity limits of axis {} in block {} of the program by {e:.3e}",
+                m.axes[k].name,
+                b + 1
+            ),
+        });
+    }
+    let count = pending_blocks.len();
+    let mut csv = String::from("block,t");
+    for a in &m.axes {
+        let _ = write!(csv, ",{}", a.name);
+    }
+    csv.push_str(",layer,t_star,mu\n");
+    for (n, (p, t)) in pending_blocks.into_iter().zip(&joined.times).enumerate() {
+        let _ = write!(csv, "{},{t}", n + 1);
+        for v in &p.target {
+            let _ = write!(csv, ",{v}");
+        }
+        let _ = writeln!(csv, ",{},{},{}", p.layer, p.t_star, p.t_star / t);
+        let mut block = Block::linear(p.target, Feed::InverseTime(*t));
+        if let Some(label) = p.comment {
+            block = block.with_comment(label);
+        }
+        block.rezero = p.rezero;
+        program.blocks.push(block);
+    }
+    // The joins' share of the program time, the same for every method.
+    let joins = joined.total - total[0];
     program.header_comments = vec![
         format!("formcam: {} on {}", job.display(), m.name),
         format!(
             "{} layers, {count} blocks, {:.3} s ({} block times; pairwise {:.3} s, global {:.3} s)",
             layers.len(),
-            total[0] + transitions,
+            total[0] + joins,
             motion.times.as_deref().unwrap_or("global"),
-            total[1] + transitions,
-            total[2] + transitions
+            total[1] + joins,
+            total[2] + joins
         ),
     ];
-    let violated: Vec<Violated> = layers.iter().flat_map(|l| l.violated.clone()).collect();
+    let violated: Vec<Violated> = layers
+        .iter()
+        .flat_map(|l| l.violated.clone())
+        .chain(program_violated)
+        .collect();
     let accepted = crate::checks::accepted(&violated);
     if !accepted.is_empty() {
         program.header_comments.push(format!(
@@ -499,15 +563,9 @@ pub fn write_program(
     let mut summary = serde_json::Map::new();
     summary.insert("blocks".into(), json!(count));
     summary.insert("layers".into(), json!(layers.len()));
-    summary.insert("program_time_s".into(), json!(total[0] + transitions));
-    summary.insert(
-        "program_time_pairwise_s".into(),
-        json!(total[1] + transitions),
-    );
-    summary.insert(
-        "program_time_global_s".into(),
-        json!(total[2] + transitions),
-    );
+    summary.insert("program_time_s".into(), json!(total[0] + joins));
+    summary.insert("program_time_pairwise_s".into(), json!(total[1] + joins));
+    summary.insert("program_time_global_s".into(), json!(total[2] + joins));
     summary.insert(
         "program_time_preliminary_s".into(),
         json!(total[3] + transitions),
@@ -530,9 +588,9 @@ pub fn write_program(
     let line = format!(
         "; {} layers, {count} blocks, {:.2} s (pairwise {:.2} s, global {:.2} s) -> program.{ext}",
         layers.len(),
-        total[0] + transitions,
-        total[1] + transitions,
-        total[2] + transitions
+        total[0] + joins,
+        total[1] + joins,
+        total[2] + joins
     );
     Ok(Built {
         files: vec![
@@ -542,7 +600,108 @@ pub fn write_program(
         summary,
         line,
         program_axes,
+        violated,
     })
+}
+
+/// The blocks next to each join (and at the program's start and end), cut
+/// along their lines where the jump across the join breaks a limit, so that
+/// the velocity ramps in short pieces there (see [`ramp_pieces`]). A piece
+/// runs no faster than its block did.
+fn ramps(
+    m: &Machine,
+    from: Option<&[f64]>,
+    blocks: Vec<Pending>,
+    limits: &[AxisLimits],
+    tau: f64,
+) -> Result<Vec<Pending>, formcam_motion::MotionError> {
+    let n = blocks.len();
+    let w = m.axes.len();
+    let d = program_deltas(m, from, &blocks);
+    let t_star: Vec<f64> = blocks.iter().map(|b| b.t_star).collect();
+    let cap: Vec<f64> = blocks.iter().map(|b| b.cap).collect();
+    let joins: Vec<bool> = (0..=n)
+        .map(|i| i == 0 || i == n || blocks[i].part != blocks[i - 1].part)
+        .collect();
+    let cuts = ramp_pieces(&d, &t_star, &cap, &joins, limits, tau)?;
+    let mut out = Vec::with_capacity(n + cuts.iter().map(Vec::len).sum::<usize>());
+    let mut prev: Option<Vec<f64>> = from.map(<[f64]>::to_vec);
+    for (i, (b, ends)) in blocks.into_iter().zip(cuts).enumerate() {
+        let start = prev.take().unwrap_or_else(|| b.target.clone());
+        if ends.len() < 2 {
+            prev = Some(b.target.clone());
+            out.push(b);
+            continue;
+        }
+        let t_block = b.t_star / b.cap;
+        let mut at = 0.0;
+        let mut comment = b.comment;
+        for (j, &e) in ends.iter().enumerate() {
+            let target: Vec<f64> = if j + 1 == ends.len() {
+                b.target.clone()
+            } else {
+                start
+                    .iter()
+                    .zip(&b.target)
+                    .map(|(s, t)| s + e * (t - s))
+                    .collect()
+            };
+            let piece: Vec<f64> = d[i * w..(i + 1) * w].iter().map(|v| v * (e - at)).collect();
+            let t_star = preliminary_times(&piece, limits, tau)?
+                .first()
+                .copied()
+                .unwrap_or(tau);
+            out.push(Pending {
+                target,
+                t_star,
+                cap: (t_star / ((e - at) * t_block)).min(1.0),
+                layer: b.layer,
+                part: b.part,
+                rezero: j == 0 && b.rezero,
+                comment: comment.take(),
+            });
+            at = e;
+        }
+        prev = Some(b.target);
+    }
+    Ok(out)
+}
+
+/// The axis motions (mm, rad) of the program's blocks from `from` (NC units,
+/// where the first block starts), block after block.
+fn program_deltas(m: &Machine, from: Option<&[f64]>, blocks: &[Pending]) -> Vec<f64> {
+    let w = m.axes.len();
+    let internal = |a: usize, v: f64| {
+        if m.axes[a].is_rotary() {
+            v.to_radians()
+        } else {
+            v
+        }
+    };
+    let mut out = Vec::with_capacity(blocks.len() * w);
+    let mut prev: Option<&[f64]> = from;
+    for b in blocks {
+        let p = prev.unwrap_or(&b.target);
+        for (a, (t, f)) in b.target.iter().zip(p).enumerate().take(w) {
+            out.push(internal(a, *t) - internal(a, *f));
+        }
+        prev = Some(&b.target);
+    }
+    out
+}
+
+/// The first broken velocity or jump limit of the whole program (`(block,
+/// axis, excess)`), which starts and ends at rest.
+fn timing_from_rest(
+    deltas: &[f64],
+    times: &[f64],
+    limits: &[AxisLimits],
+) -> Option<(usize, usize, f64)> {
+    let mut d = deltas.to_vec();
+    d.extend(std::iter::repeat_n(0.0, limits.len()));
+    let mut t = times.to_vec();
+    t.push(1.0);
+    check_timing(&d, &t, limits).first().copied()
 }
 
 /// The axes over the whole program (`t` in s since its start, then each axis in

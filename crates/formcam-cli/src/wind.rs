@@ -354,6 +354,7 @@ fn run_job(job: &Path, table: Job, out: &Path, stage: Stage) -> Result<String, C
             crate::checks::enforce(job, &checks, &layer_blocks.violated)?;
             let built =
                 crate::program::write_program(job, &stem, m, &[layer_blocks], &motion, &post)?;
+            crate::checks::enforce(job, &checks, &built.violated)?;
             files.extend(built.files);
             if let Some(obj) = summary.as_object_mut() {
                 obj.extend(built.summary);
@@ -791,6 +792,7 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
     let violated: Vec<_> = blocks.iter().flat_map(|b| b.violated.clone()).collect();
     crate::checks::enforce(job_path, &checks, &violated)?;
     let built = crate::program::write_program(job_path, &stem, &m, &blocks, &motion, &post)?;
+    crate::checks::enforce(job_path, &checks, &built.violated)?;
     let mut summary = serde_json::Map::new();
     summary.insert("job".into(), json!(job_path.display().to_string()));
     summary.insert("machine".into(), json!(m.name));

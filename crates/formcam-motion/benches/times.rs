@@ -1,12 +1,13 @@
 //! Block times for 1e5 blocks: the global optimum (monotone sweeps without
-//! reversals; the cone program with them) and the pairwise method.
+//! reversals; the cone program with them) and the pairwise method; and 1e5
+//! blocks of eight parts, each timed on its own, joined (`join_times`).
 
 #![allow(clippy::expect_used, missing_docs)]
 
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use formcam_motion::{AxisLimits, global, pairwise, preliminary_times};
+use formcam_motion::{AxisLimits, global, join_times, pairwise, preliminary_times};
 
 fn program(n: usize, reversing: bool) -> Vec<f64> {
     (0..n)
@@ -56,6 +57,26 @@ fn benches(c: &mut Criterion) {
             b.iter(|| black_box(pairwise(&d, &t_star, &lim).expect("pairwise")))
         });
     }
+    // Eight parts of 12 500 blocks with carriage reversals, each timed by
+    // `global`, joined by one block of 300 mm on the carriage.
+    let part = program(12_500, true);
+    let pt = preliminary_times(&part, &lim, 0.002).expect("t*");
+    let mu = global(&part, &pt, &lim).expect("global").mu;
+    let (mut d, mut t_star, mut cap) = (Vec::new(), Vec::new(), Vec::new());
+    for k in 0..8 {
+        if k > 0 {
+            let join = [0.0, 300.0, 0.0];
+            t_star.extend(preliminary_times(&join, &lim, 0.002).expect("t*"));
+            d.extend(join);
+            cap.push(1.0);
+        }
+        d.extend(&part);
+        t_star.extend(&pt);
+        cap.extend(&mu);
+    }
+    c.bench_function("join_times, 8 parts of 12 500 blocks", |b| {
+        b.iter(|| black_box(join_times(&d, &t_star, &cap, &lim).expect("join")))
+    });
 }
 
 criterion_group!(name = g; config = Criterion::default().sample_size(10); targets = benches);

@@ -9,14 +9,20 @@
 //! * [`global`] — the same problem over all blocks at once (convex): by monotone
 //!   sweeps when no axis reverses between neighbours (the feasible set then has a
 //!   greatest element), otherwise as a second-order-cone program (Clarabel).
+//! * [`join_times`] — a sequence of blocks timed in parts (the layers of a
+//!   program) re-timed across the joins, from rest to rest, each part's times
+//!   kept as caps; [`ramp_pieces`] first cuts the long blocks at the joins so
+//!   that the velocity can ramp there in short pieces.
 
 mod blocks;
 mod error;
+mod ramps;
 mod times;
 
 pub use blocks::{Deviation, Tolerance, fit_blocks};
 pub use error::MotionError;
+pub use ramps::ramp_pieces;
 pub use times::{
-    AxisLimits, Timing, check_acceleration, check_timing, deltas, global, global_by_cone, pairwise,
-    preliminary_times, with_acceleration,
+    AxisLimits, Timing, check_acceleration, check_timing, deltas, global, global_by_cone,
+    join_times, pairwise, preliminary_times, with_acceleration,
 };

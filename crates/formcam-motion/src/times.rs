@@ -237,10 +237,63 @@ pub fn global(
     if n < 2 {
         return Ok(Timing::from_mu(t_star, vec![1.0; n]));
     }
+    let cap = vec![1.0; n];
     if (0..n).all(|i| !reverses(&a, i, (i + 1) % n, w)) {
-        return Ok(Timing::from_mu(t_star, greatest(&a, &rho, n, w)));
+        return Ok(Timing::from_mu(t_star, greatest(&a, &rho, n, w, &cap)));
     }
-    windowed(&a, &rho, t_star, n, w)
+    windowed(&a, &rho, t_star, n, w, &cap, false)
+}
+
+/// Times a whole sequence of blocks that were timed in parts (the layers of a
+/// program, each timed as its own cyclic circuit, and the moves between them):
+/// the least `sum t*_i / mu_i` with `0 < mu_i <= cap_i` (`cap`: each block's
+/// `mu` as timed in its part, 1 for a block not timed yet) and every velocity
+/// jump within its limit, the sequence starting and ending at rest.
+///
+/// Within each part the caps already keep the jumps, so only blocks near the
+/// joins are slowed: the greatest element below the caps (monotone sweeps),
+/// then a cone program in a window round each join where an axis reverses and
+/// the sweeps leave a jump broken (the windows of [`global`]).
+pub fn join_times(
+    deltas: &[f64],
+    t_star: &[f64],
+    cap: &[f64],
+    limits: &[AxisLimits],
+) -> Result<Timing, MotionError> {
+    let w = limits.len().max(1);
+    let n = t_star.len();
+    if deltas.len() != n * w || cap.len() != n {
+        return Err(MotionError::Field {
+            field: "join_times".into(),
+            reason: format!(
+                "{n} blocks need {} motions and {n} caps, got {} and {}",
+                n * w,
+                deltas.len(),
+                cap.len()
+            ),
+        });
+    }
+    if let Some(c) = cap.iter().find(|c| !(**c > 0.0 && **c <= 1.0)) {
+        return Err(MotionError::Field {
+            field: "cap".into(),
+            reason: format!("every cap must lie in (0, 1], got {c}"),
+        });
+    }
+    if n == 0 {
+        return Ok(Timing::from_mu(t_star, Vec::new()));
+    }
+    // A standstill block after the last closes the sequence into a cycle: the
+    // machine stands before the first block and after the last.
+    let mut d = deltas.to_vec();
+    d.extend(std::iter::repeat_n(0.0, w));
+    let mut ts = t_star.to_vec();
+    ts.push(1.0);
+    let mut caps = cap.to_vec();
+    caps.push(1.0);
+    let Jumps { a, rho, n: m, w } = Jumps::new(&d, &ts, limits)?;
+    let mut timing = windowed(&a, &rho, &ts, m, w, &caps, true)?;
+    timing.mu.truncate(n);
+    Ok(Timing::from_mu(t_star, timing.mu))
 }
 
 /// The global optimum as one cone program over all blocks (Clarabel): slower
@@ -254,7 +307,17 @@ pub fn global_by_cone(
     if n < 2 {
         return Ok(Timing::from_mu(t_star, vec![1.0; n]));
     }
-    cone_program(&a, &rho, t_star, &(0..n).collect::<Vec<_>>(), None, n, w)
+    let cap = vec![1.0; n];
+    cone_program(
+        &a,
+        &rho,
+        t_star,
+        &(0..n).collect::<Vec<_>>(),
+        None,
+        n,
+        w,
+        &cap,
+    )
 }
 
 /// With reversals: the optimum lies below the greatest element `g` of the
@@ -263,19 +326,35 @@ pub fn global_by_cone(
 /// window of blocks solved as a cone program with `g` fixed outside it; a window
 /// whose edges do not settle back onto `g` is doubled. Windows that would cover
 /// the whole program become one cone program over all blocks.
+///
+/// `cap`: the greatest `mu` of each block. `only_broken`: windows only round
+/// the reversals whose jump `g` breaks (the others already hold below the caps).
 fn windowed(
     a: &[f64],
     rho: &[f64],
     t_star: &[f64],
     n: usize,
     w: usize,
+    cap: &[f64],
+    only_broken: bool,
 ) -> Result<Timing, MotionError> {
-    let g = greatest(a, rho, n, w);
-    let pairs: Vec<usize> = (0..n).filter(|&i| reverses(a, i, (i + 1) % n, w)).collect();
+    let g = greatest(a, rho, n, w, cap);
+    let broken = |i: usize| {
+        let j = (i + 1) % n;
+        (0..w).any(|k| (a[i * w + k] * g[i] - a[j * w + k] * g[j]).abs() > rho[k])
+    };
+    let pairs: Vec<usize> = (0..n)
+        .filter(|&i| reverses(a, i, (i + 1) % n, w) && (!only_broken || broken(i)))
+        .collect();
+    if pairs.is_empty() {
+        let mut mu = g;
+        restore_feasibility(&mut mu, a, rho, n, w);
+        return Ok(Timing::from_mu(t_star, mu));
+    }
     let mut half = 16usize;
     loop {
         if 2 * half * pairs.len() >= n {
-            return cone_program(a, rho, t_star, &(0..n).collect::<Vec<_>>(), None, n, w);
+            return cone_program(a, rho, t_star, &(0..n).collect::<Vec<_>>(), None, n, w, cap);
         }
         // Windows [i + 1 - half, i + half] around each reversal, merged.
         let mut spans: Vec<(usize, usize)> = Vec::new();
@@ -306,7 +385,7 @@ fn windowed(
             let idx: Vec<usize> = (s..=e).map(|i| i % n).collect();
             let left = g[(s + n - 1) % n];
             let right = g[(e + 1) % n];
-            let sol = cone_program(a, rho, t_star, &idx, Some((left, right)), n, w)?;
+            let sol = cone_program(a, rho, t_star, &idx, Some((left, right)), n, w, cap)?;
             let edge = |k: usize| (sol.mu[k] - g[idx[k]]).abs() <= 1e-6 * g[idx[k]];
             if !edge(0) || !edge(idx.len() - 1) {
                 settled = false;
@@ -331,8 +410,10 @@ fn windowed(
 ///
 /// Where an axis does reverse, its jump rows are left out: the result is then
 /// the greatest element of that relaxation, above every feasible `mu`.
-fn greatest(a: &[f64], rho: &[f64], n: usize, w: usize) -> Vec<f64> {
-    let mut mu = vec![1.0; n];
+///
+/// `cap`: where the sweeps start, each block's greatest `mu`.
+fn greatest(a: &[f64], rho: &[f64], n: usize, w: usize, cap: &[f64]) -> Vec<f64> {
+    let mut mu = cap.to_vec();
     // The bound on mu_i from its neighbour j.
     let bound = |mu: &[f64], i: usize, j: usize| {
         let mut m = 1.0f64;
@@ -418,7 +499,8 @@ impl Rows {
 /// `mu_k, s_k`; minimise `sum s_k` with `s_k mu_k >= t*_k` (a rotated cone),
 /// `mu_k <= 1` and the jump rows between neighbours. `fixed`: the `mu` of the
 /// blocks just before and after `idx`, which stay; `None` when `idx` is the whole
-/// cyclic program.
+/// cyclic program. `cap`: each block's greatest `mu` (by block index).
+#[allow(clippy::too_many_arguments)]
 fn cone_program(
     a: &[f64],
     rho: &[f64],
@@ -427,14 +509,15 @@ fn cone_program(
     fixed: Option<(f64, f64)>,
     n: usize,
     w: usize,
+    cap: &[f64],
 ) -> Result<Timing, MotionError> {
     let m = idx.len();
     // Columns: mu_0..mu_{m-1}, s_0..s_{m-1}.
     let mut r = Rows::default();
-    for k in 0..m {
-        // mu_k <= 1 (mu_k > 0 follows from the cone).
+    for (k, &i) in idx.iter().enumerate() {
+        // mu_k <= cap (mu_k > 0 follows from the cone).
         r.put(r.row, k, 1.0);
-        r.b.push(1.0);
+        r.b.push(cap[i]);
         r.row += 1;
     }
     for k in 0..m {
@@ -492,7 +575,8 @@ fn cone_program(
         SolverStatus::Solved | SolverStatus::AlmostSolved => {
             let mut mu: Vec<f64> = solver.solution.x[..m]
                 .iter()
-                .map(|v| v.clamp(1e-12, 1.0))
+                .zip(idx)
+                .map(|(v, &i)| v.clamp(1e-12, cap[i]))
                 .collect();
             if fixed.is_none() {
                 // Interior-point solutions sit a hair inside or outside the jump

@@ -189,6 +189,36 @@ fn random_job(rng: &mut Rng, r: &Ranges) -> String {
     )
 }
 
+/// The issue's job exactly as it was filed: the format's specification asks a
+/// reader to refuse it (4 divides neither layer's circuit count, 55 and 75),
+/// and the message names the layer and the rule.
+#[test]
+fn the_issue_job_as_filed_is_refused_for_its_patterns() {
+    let dir = scratch("issue-as-filed");
+    let path = dir.join("job.wind");
+    let filed = ISSUE_JOB.replace(
+        r#""windAngle": 57, "patternNumber": 5"#,
+        r#""windAngle": 57, "patternNumber": 4"#,
+    );
+    assert_ne!(filed, ISSUE_JOB);
+    std::fs::write(&path, &filed).unwrap();
+    let st = Command::new(env!("CARGO_BIN_EXE_formcam"))
+        .arg("wind")
+        .arg(&path)
+        .arg("-o")
+        .arg(dir.join("out"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&st.stderr);
+    assert!(!st.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("layers[1].patternNumber") && stderr.contains("does not divide"),
+        "{stderr}"
+    );
+    assert!(!dir.join("out").join("program.gcode").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn the_issue_job_is_timed_no_slower_than_pairwise() {
     let o = wind("issue", ISSUE_JOB).expect("the issue's job runs");

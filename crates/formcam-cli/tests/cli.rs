@@ -438,6 +438,15 @@ fn machine_show_prints_the_chain() {
     ] {
         assert!(text.contains(word), "{word} missing in {text}");
     }
+    // The spindle is a modulo axis by default, the eye's yaw is not.
+    let row = |link: &str| {
+        text.lines()
+            .find(|l| l.split_whitespace().next() == Some(link))
+            .map(|l| l.split_whitespace().last().unwrap_or_default().to_string())
+    };
+    assert_eq!(row("spindle").as_deref(), Some("yes"), "{text}");
+    assert_eq!(row("yaw").as_deref(), Some("no"), "{text}");
+    assert_eq!(row("carriage").as_deref(), Some("-"), "{text}");
 }
 
 #[test]

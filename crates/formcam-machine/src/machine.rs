@@ -828,8 +828,8 @@ impl Machine {
         let _ = writeln!(s, "machine: {} ({:?})", self.name, self.roles.kind);
         let _ = writeln!(
             s,
-            "{:<16} {:<16} {:<10} {:<5} {:>12} {:>12} {:>12}",
-            "link", "parent", "joint", "axis", "min", "max", "v_max/min"
+            "{:<16} {:<16} {:<10} {:<5} {:>12} {:>12} {:>12} {:>7}",
+            "link", "parent", "joint", "axis", "min", "max", "v_max/min", "modulo"
         );
         for l in &self.links {
             let parent = l.parent.map_or("-", |p| self.links[p].name.as_str());
@@ -838,7 +838,7 @@ impl Machine {
                 JointKind::Prismatic => "prismatic",
                 JointKind::Fixed => "fixed",
             };
-            let (axis, lo, hi, v) = match l.joint.axis {
+            let (axis, lo, hi, v, modulo) = match l.joint.axis {
                 Some(a) => {
                     let ax = &self.axes[a];
                     let (k, unit) = if ax.is_rotary() {
@@ -853,14 +853,25 @@ impl Machine {
                             "none".to_string()
                         }
                     };
-                    (ax.name.as_str(), f(ax.min), f(ax.max), f(ax.v_max * 60.0))
+                    let modulo = match (ax.is_rotary(), ax.modulo) {
+                        (false, _) => "-",
+                        (true, true) => "yes",
+                        (true, false) => "no",
+                    };
+                    (
+                        ax.name.as_str(),
+                        f(ax.min),
+                        f(ax.max),
+                        f(ax.v_max * 60.0),
+                        modulo,
+                    )
                 }
-                None => ("-", String::new(), String::new(), String::new()),
+                None => ("-", String::new(), String::new(), String::new(), ""),
             };
             let _ = writeln!(
                 s,
-                "{:<16} {:<16} {:<10} {:<5} {:>12} {:>12} {:>12}",
-                l.name, parent, kind, axis, lo, hi, v
+                "{:<16} {:<16} {:<10} {:<5} {:>12} {:>12} {:>12} {:>7}",
+                l.name, parent, kind, axis, lo, hi, v, modulo
             );
         }
         let _ = writeln!(s, "points:");

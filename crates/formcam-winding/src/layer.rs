@@ -408,7 +408,10 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
                 (Method::Shooting, MuLaw::Constant(mu), FRAC_PI_2)
             }
             Err(e) => {
-                warnings.push(format!("{e}; the minimax search was used instead"));
+                warnings.push(format!(
+                    "no constant slippage turns this shell at both ends (shooting: {e}); \
+                     the minimax search was used instead"
+                ));
                 (Method::Minimax, MuLaw::Constant(0.0), FRAC_PI_2)
             }
         },

@@ -2,6 +2,8 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -585,18 +587,7 @@ fn a_multi_layer_job_grows_the_mandrel_and_writes_one_program() {
 #[test]
 fn a_wind_file_runs_on_the_xab_winder_and_writes_marlin() {
     let out = scratch("wind-file").join("out");
-    let st = formcam()
-        .arg("wind")
-        .arg(examples().join("tube-fiberpath.wind"))
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(
-        st.status.success(),
-        "{}",
-        String::from_utf8_lossy(&st.stderr)
-    );
+    common::wind_ok(&examples().join("tube-fiberpath.wind"), &out);
     let summary = summary_of(&out);
     assert_eq!(summary["layers"], 3);
     assert_eq!(summary["machine"], "X/A/B winder");
@@ -713,18 +704,7 @@ fn the_spindle_stays_within_100_turns() {
     // FiberPath's tube wound the spindle to A-291582.1534 on Marlin: now
     // re-zeroed by G92 between layers and before it would pass 100 turns.
     let out = scratch("spindle-wind").join("out");
-    let st = formcam()
-        .arg("wind")
-        .arg(examples().join("tube-fiberpath.wind"))
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(
-        st.status.success(),
-        "{}",
-        String::from_utf8_lossy(&st.stderr)
-    );
+    common::wind_ok(&examples().join("tube-fiberpath.wind"), &out);
     let program = std::fs::read_to_string(out.join("program.gcode")).unwrap();
     let largest = largest_spindle_angle(&program);
     assert!(largest <= 36000.0, "largest |A| {largest}");

@@ -9,6 +9,8 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
@@ -113,18 +115,7 @@ fn linuxcnc_reads_our_program_to_the_same_positions_and_time() {
     let dir = scratch("layers");
     let out = dir.join("out");
     let job = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/tube-layers-4axis.toml");
-    let st = Command::new(env!("CARGO_BIN_EXE_formcam"))
-        .arg("wind")
-        .arg(&job)
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(
-        st.status.success(),
-        "{}",
-        String::from_utf8_lossy(&st.stderr)
-    );
+    common::wind_ok(&job, &out);
     let program = std::fs::read_to_string(out.join("program.ngc")).unwrap();
 
     // The machine: A a wrapped rotary axis.

@@ -5,6 +5,8 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -303,18 +305,7 @@ fn a_thousand_larger_jobs() {
 fn a_program_with_a_skip_layer_keeps_its_limits_across_the_joins() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let out = scratch("skip").join("out");
-    let st = Command::new(env!("CARGO_BIN_EXE_formcam"))
-        .arg("wind")
-        .arg(root.join("examples/tube-layers-4axis.toml"))
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(
-        st.status.success(),
-        "{}",
-        String::from_utf8_lossy(&st.stderr)
-    );
+    common::wind_ok(&root.join("examples/tube-layers-4axis.toml"), &out);
     check_program(&out, include_str!("../../../machines/winder-4axis.toml"));
     let _ = std::fs::remove_dir_all(out.parent().unwrap());
 }

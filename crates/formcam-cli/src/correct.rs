@@ -702,21 +702,23 @@ pub fn displacement_svg(
             .y_label_formatter(&fy)
             .draw()
             .map_err(|e| err(e.to_string()))?;
+        let (unchanged, moved): (Vec<_>, Vec<_>) = pts
+            .iter()
+            .partition(|p| matches!(p.3, Placement::Outside | Placement::Unknown));
         chart
             .draw_series(
-                pts.iter()
-                    .filter(|p| !matches!(p.3, Placement::Outside | Placement::Unknown))
-                    .map(|&(x, y, d, _)| Circle::new((x, y), 2, colour(d).filled())),
+                moved
+                    .iter()
+                    .map(|&&(x, y, d, _)| Circle::new((x, y), 2, colour(d).filled())),
             )
             .map_err(|e| err(e.to_string()))?;
-        let unchanged: Vec<(f64, f64)> = pts
-            .iter()
-            .filter(|p| matches!(p.3, Placement::Outside | Placement::Unknown))
-            .map(|p| (p.0, p.1))
-            .collect();
         if !unchanged.is_empty() {
             chart
-                .draw_series(unchanged.iter().map(|&q| Circle::new(q, 2, grey.filled())))
+                .draw_series(
+                    unchanged
+                        .iter()
+                        .map(|p| Circle::new((p.0, p.1), 2, grey.filled())),
+                )
                 .map_err(|e| err(e.to_string()))?
                 .label("node left unchanged (outside the measured area)")
                 .legend(move |(x, y)| Circle::new((x + 10, y), 3, grey.filled()));

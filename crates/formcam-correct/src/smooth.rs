@@ -113,11 +113,16 @@ impl Level {
     /// Entry `k` of `M + lambda L`, in row `i`.
     #[inline(always)]
     fn entry(&self, i: usize, k: usize, lambda: f64) -> f64 {
-        let m = match &self.mass {
+        self.mass_at(i, k) + lambda * self.rough[k]
+    }
+
+    /// Entry `k` of `M`, in row `i` (no mass given: the identity).
+    #[inline(always)]
+    fn mass_at(&self, i: usize, k: usize) -> f64 {
+        match &self.mass {
             Some(m) => m[k],
             None => f64::from(u8::from(self.col[k] as usize == i)),
-        };
-        m + lambda * self.rough[k]
+        }
     }
 }
 
@@ -291,10 +296,7 @@ fn galerkin(fine: &Level, p: &Csr, pt: &Csr) -> Level {
         for (i, wi) in pt.row(big) {
             for k in fine.ptr[i]..fine.ptr[i + 1] {
                 let j = fine.col[k] as usize;
-                let m = match &fine.mass {
-                    Some(m) => m[k],
-                    None => f64::from(u8::from(i == j)),
-                };
+                let m = fine.mass_at(i, k);
                 let l = fine.rough[k];
                 for (c, wj) in p.row(j) {
                     if slot[c] == usize::MAX {

@@ -180,19 +180,19 @@ fn split_long_blocks(p: &mut Program, axes: &[usize], max_deg: f64) -> Result<()
 /// Re-zeroing: marks each block whose angle would pass the bound.
 fn mark_rezeros(p: &mut Program, axes: &[usize]) -> Result<(), NcError> {
     let mut off = vec![0i64; axes.len()];
+    let mut before: Option<Vec<i64>> = None;
     for i in 0..p.blocks.len() {
         let now = writable(p, i, axes)?;
-        if i == 0 {
-            continue;
-        }
-        let before = writable(p, i - 1, axes)?;
-        let passes = now.iter().zip(&off).any(|(s, o)| (s - o).abs() > BOUND);
-        if p.blocks[i].rezero || passes {
-            p.blocks[i].rezero = true;
-            for (o, s) in off.iter_mut().zip(&before) {
-                *o = turns_below(*s);
+        if let Some(before) = &before {
+            let passes = now.iter().zip(&off).any(|(s, o)| (s - o).abs() > BOUND);
+            if p.blocks[i].rezero || passes {
+                p.blocks[i].rezero = true;
+                for (o, s) in off.iter_mut().zip(before) {
+                    *o = turns_below(*s);
+                }
             }
         }
+        before = Some(now);
     }
     Ok(())
 }

@@ -108,9 +108,13 @@ fn prepass(line: &str, lineno: usize, out: &mut String) -> Result<LineExtra, NcE
                     ("ACN(", Direction::Negative),
                     ("DC(", Direction::Shortest),
                 ] {
-                    if line[e..].to_ascii_uppercase().starts_with(f) {
+                    if b[e..]
+                        .get(..f.len())
+                        .is_some_and(|w| w.eq_ignore_ascii_case(f.as_bytes()))
+                    {
                         dir = Some(d);
                         e += f.len();
+                        break;
                     }
                 }
                 let vs = e;

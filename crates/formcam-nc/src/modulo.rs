@@ -82,7 +82,13 @@ pub(crate) fn scaled(v: f64) -> Option<i64> {
 
 /// The whole turns below `s` (printed units).
 pub(crate) fn turns_below(s: i64) -> i64 {
-    s.div_euclid(TURN) * TURN
+    turns_below_in(s, TURN)
+}
+
+/// The whole turns below `s`, a turn being `turn` printed units (a
+/// template's own decimals).
+pub(crate) fn turns_below_in(s: i64, turn: i64) -> i64 {
+    s.div_euclid(turn) * turn
 }
 
 /// The indices of the program's modulo axes.

@@ -393,8 +393,7 @@ impl Writer<'_> {
         for (k, a) in self.p.axes.iter().enumerate() {
             let d = self.axes[k].1;
             if let (true, Some(s)) = (a.modulo, num::scaled(before[k], d)) {
-                let turn = 360 * 10i64.pow(d);
-                self.off[k] = s.div_euclid(turn) * turn;
+                self.off[k] = modulo::turns_below_in(s, 360 * 10i64.pow(d));
             }
         }
     }

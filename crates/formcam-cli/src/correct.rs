@@ -15,7 +15,7 @@ use serde_json::{Value, json};
 
 use crate::CliError;
 use crate::output::write_all;
-use crate::plot::{Series, panels_svg, svg_err, tick_label};
+use formcam_plot::{Series, panels_svg, svg_err, tick_label};
 
 /// Options of `formcam correct`.
 #[derive(Debug, clap::Args)]
@@ -602,7 +602,7 @@ pub fn deviations_svg(m: &Measurements, grid: &Grid) -> Result<Vec<u8>, CliError
         };
         series.push((label, pts, PALETTE[j % PALETTE.len()]));
     }
-    panels_svg(
+    Ok(panels_svg(
         "deviations.svg",
         &format!(
             "Measured deviation per section (max {:.4} mm, rms {:.4} mm)",
@@ -614,7 +614,7 @@ pub fn deviations_svg(m: &Measurements, grid: &Grid) -> Result<Vec<u8>, CliError
             "deviation along the normal, mm",
             series,
         )],
-    )
+    )?)
 }
 
 /// The displacement of the nodes (along the surface normal, coloured) over

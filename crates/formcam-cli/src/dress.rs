@@ -13,7 +13,7 @@ use serde_json::json;
 
 use crate::CliError;
 use crate::output::write_all;
-use crate::plot::{Panel, Series, panels_svg, range, svg_err};
+use formcam_plot::{Panel, Series, panels_svg, range, svg_err};
 
 /// Whether a job's top-level table is a dressing job (it has `[wheel]`).
 pub fn is_job(table: &toml::Table) -> bool {
@@ -457,11 +457,11 @@ fn mrr_svg(title: &str, d: &Dressing) -> Result<Vec<u8>, CliError> {
             .collect(),
         ),
     ];
-    panels_svg(
+    Ok(panels_svg(
         "mrr.svg",
         &format!("{title}: removal rate and feed against Z (point A)"),
         panels,
-    )
+    )?)
 }
 
 fn pts(p: &[Point]) -> Vec<(f64, f64)> {

@@ -6,7 +6,6 @@ mod correct;
 mod dress;
 mod machine;
 mod output;
-mod plot;
 mod program;
 mod wind;
 mod windfile;
@@ -149,6 +148,12 @@ enum MachineCommand {
 /// An error for the user: one line, naming the file and the field.
 #[derive(Debug)]
 pub struct CliError(pub String);
+
+impl From<formcam_plot::PlotError> for CliError {
+    fn from(e: formcam_plot::PlotError) -> Self {
+        CliError(e.to_string())
+    }
+}
 
 fn main() -> ExitCode {
     let cli = Cli::parse();

@@ -281,7 +281,7 @@ fn run_job(job: &Path, table: Job, out: &Path, stage: Stage) -> Result<String, C
         ("path.csv".to_string(), path_csv(&layer)),
         (
             "path.svg".to_string(),
-            crate::plot::layer_svg(&title, &mandrel, &layer)?,
+            formcam_plot::layer_svg(&title, &mandrel, &layer)?,
         ),
     ];
     let mut eye_line = String::new();
@@ -307,7 +307,7 @@ fn run_job(job: &Path, table: Job, out: &Path, stage: Stage) -> Result<String, C
         files.push(("eye.csv".to_string(), eye_csv(&t)));
         files.push((
             "eye.svg".to_string(),
-            crate::plot::eye_svg(&format!("{name}: payout eye over one circuit"), &t)?,
+            formcam_plot::eye_svg(&format!("{name}: payout eye over one circuit"), &t)?,
         ));
         eye_line = format!(
             "; eye {}: u in [{:.4}, {:.4}], rms {:.4}, constraints {}",
@@ -673,7 +673,7 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
             ("path.csv".into(), path_csv(layer)),
             (
                 "path.svg".into(),
-                crate::plot::layer_svg(&title, mandrel, layer)?,
+                formcam_plot::layer_svg(&title, mandrel, layer)?,
             ),
         ];
         if let Some(t) = &traj {
@@ -682,7 +682,7 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
             own.push(("eye.csv".into(), eye_csv(t)));
             own.push((
                 "eye.svg".into(),
-                crate::plot::eye_svg(&format!("{label}: payout eye over one circuit"), t)?,
+                formcam_plot::eye_svg(&format!("{label}: payout eye over one circuit"), t)?,
             ));
         }
         own.push(("axes.csv".into(), axes_csv(&m, &targets, &track)));

@@ -1,30 +1,29 @@
-//! SVG plots: stacked panels of line series (plotters, SVG backend).
+//! Stacked panels of line series in one SVG document (plotters, SVG backend).
 
-use formcam_geom::Meridian;
-use formcam_winding::Layer;
-use formcam_winding::eye::EyeTrajectory;
-use formcam_winding::minimax::bridging_limit;
 use plotters::prelude::*;
 
-use crate::CliError;
+use crate::PlotError;
 
 /// One line: legend label (empty, or one shown before in the panel: no new
 /// legend entry), points, colour.
-pub(crate) type Series = (String, Vec<(f64, f64)>, RGBColor);
+pub type Series = (String, Vec<(f64, f64)>, RGBColor);
 
 /// One panel: x label, y label, its lines.
-pub(crate) type Panel = (&'static str, &'static str, Vec<Series>);
+pub type Panel = (&'static str, &'static str, Vec<Series>);
 
 /// Maps a plotting error to one naming the file.
-pub(crate) fn svg_err(file: &str) -> impl Fn(String) -> CliError + '_ {
-    move |e| CliError(format!("{file}: {e}"))
+pub fn svg_err(file: &str) -> impl Fn(String) -> PlotError + '_ {
+    move |message| PlotError {
+        file: file.to_string(),
+        message,
+    }
 }
 
 /// The range of `values` with 5 % padding; `(0, 1)` when there are none.
 /// The span is at least 1e-3 of the values' magnitude (1 when they are all
 /// 0), centred on them: a series constant to rounding reads as constant,
 /// not as a wild oscillation over the whole height.
-pub(crate) fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+pub fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
         (a.min(v), b.max(v))
     });
@@ -47,7 +46,7 @@ pub(crate) fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
 /// Tick labels for an axis over `lo..hi`: as many decimals as ticks a
 /// twentieth of the span apart need to read differently (plotters' own
 /// labels stop at 5 decimals), and no `-0`.
-pub(crate) fn tick_label(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
+pub fn tick_label(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
     let step = (hi - lo).abs() / 20.0;
     let decimals = if step.is_finite() && step > 0.0 {
         (-step.log10().floor()).clamp(0.0, 15.0) as usize
@@ -64,7 +63,7 @@ pub(crate) fn tick_label(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
 }
 
 /// Panels stacked in one SVG document; `file` names it in errors.
-pub(crate) fn panels_svg(file: &str, title: &str, panels: Vec<Panel>) -> Result<Vec<u8>, CliError> {
+pub fn panels_svg(file: &str, title: &str, panels: Vec<Panel>) -> Result<Vec<u8>, PlotError> {
     let err = svg_err(file);
     let mut svg = String::new();
     {
@@ -115,112 +114,6 @@ pub(crate) fn panels_svg(file: &str, title: &str, panels: Vec<Panel>) -> Result<
         root.present().map_err(|e| err(e.to_string()))?;
     }
     Ok(svg.into_bytes())
-}
-
-/// The layer: meridian with the Clairaut function and the bridging limit, the
-/// winding angle and the layer thickness along `z`.
-pub fn layer_svg(title: &str, mandrel: &impl Meridian, layer: &Layer) -> Result<Vec<u8>, CliError> {
-    let pts = &layer.points;
-    let mut radius: Vec<Series> = vec![
-        (
-            "meridian r".into(),
-            pts.iter().map(|p| (p.z, p.r)).collect(),
-            BLACK,
-        ),
-        (
-            "Clairaut C = r sin(alpha)".into(),
-            pts.iter().map(|p| (p.z, p.c)).collect(),
-            BLUE,
-        ),
-    ];
-    // The bridging limit where the meridian is concave, one series per stretch.
-    let mut stretch: Vec<(f64, f64)> = Vec::new();
-    for p in pts {
-        let cb = bridging_limit(&mandrel.eval(p.z));
-        if cb > 0.0 {
-            stretch.push((p.z, cb));
-        } else if !stretch.is_empty() {
-            let label = if radius.len() == 2 {
-                "bridging limit C_b"
-            } else {
-                ""
-            };
-            radius.push((label.into(), std::mem::take(&mut stretch), MAGENTA));
-        }
-    }
-    if !stretch.is_empty() {
-        let label = if radius.len() == 2 {
-            "bridging limit C_b"
-        } else {
-            ""
-        };
-        radius.push((label.into(), stretch, MAGENTA));
-    }
-    let panels = vec![
-        ("z, mm", "radius, mm", radius),
-        (
-            "z, mm",
-            "winding angle, deg",
-            vec![(
-                "alpha".into(),
-                pts.iter().map(|p| (p.z, p.alpha.to_degrees())).collect(),
-                RED,
-            )],
-        ),
-        (
-            "z, mm",
-            "layer thickness, mm",
-            vec![(
-                "two plies".into(),
-                pts.iter()
-                    .zip(&layer.thickness)
-                    .map(|(p, t)| (p.z, *t))
-                    .collect(),
-                GREEN,
-            )],
-        ),
-    ];
-    panels_svg("path.svg", title, panels)
-}
-
-/// The eye trajectory in the `Z x R` plane with the path, and `l(x)`, `u(x)`.
-pub fn eye_svg(title: &str, t: &EyeTrajectory) -> Result<Vec<u8>, CliError> {
-    let pts = &t.points;
-    let mut lengths: Vec<Series> =
-        vec![("l".into(), pts.iter().map(|p| (p.x, p.l)).collect(), RED)];
-    if t.l_min.len() == pts.len() {
-        let lm = pts.iter().zip(&t.l_min).map(|(p, l)| (p.x, *l)).collect();
-        lengths.push(("l_min (clearance)".into(), lm, BLUE));
-    }
-    let panels = vec![
-        (
-            "Z, mm",
-            "R, mm",
-            vec![
-                (
-                    "path (z, r)".into(),
-                    pts.iter().map(|p| (p.z, p.r)).collect(),
-                    BLACK,
-                ),
-                (
-                    "eye (Z, R)".into(),
-                    pts.iter().map(|p| (p.eye_z, p.eye_r)).collect(),
-                    RED,
-                ),
-            ],
-        ),
-        ("x (laid band length), mm", "free length, mm", lengths),
-        (
-            "x (laid band length), mm",
-            "pull speed u",
-            vec![(
-                "u = d lambda / dx".into(),
-                pts.iter().map(|p| (p.x, p.u)).collect(),
-                GREEN,
-            )],
-        ),
-    ];
-    panels_svg("eye.svg", title, panels)
 }
 
 #[cfg(test)]

@@ -1,0 +1,39 @@
+//! The files a run produces, held in memory until the caller writes them.
+
+/// One file of a run's result: its name inside the output folder and its
+/// contents.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ResultFile {
+    /// The file's name inside the output folder (may contain `/` for a
+    /// subfolder, e.g. `layer-01/path.csv`).
+    pub name: String,
+    /// The file's contents.
+    pub bytes: Vec<u8>,
+}
+
+impl ResultFile {
+    /// A file named `name` holding `bytes`.
+    pub fn new(name: impl Into<String>, bytes: impl Into<Vec<u8>>) -> Self {
+        Self {
+            name: name.into(),
+            bytes: bytes.into(),
+        }
+    }
+}
+
+/// What a run produced: its files, in the order they are best written, and
+/// the one line that says what was done.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct RunOutput {
+    /// The result files.
+    pub files: Vec<ResultFile>,
+    /// One line for the user: what was written and the key figures.
+    pub line: String,
+}
+
+impl RunOutput {
+    /// The file named `name`, if the run produced one.
+    pub fn file(&self, name: &str) -> Option<&ResultFile> {
+        self.files.iter().find(|f| f.name == name)
+    }
+}

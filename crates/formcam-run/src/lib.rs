@@ -1,0 +1,13 @@
+//! Runs a formcam job to its result files.
+//!
+//! The top of the layered crates (truck's style): each process module takes
+//! a job as its library crate reads it, calls that crate's pipeline, and
+//! returns the files of the result (programs, tables, `summary.json`, plots)
+//! with the one line a caller prints. The command line, the local server and
+//! bindings call these functions and only decide where the files go.
+
+mod error;
+mod files;
+
+pub use error::RunError;
+pub use files::{ResultFile, RunOutput};

@@ -42,7 +42,7 @@ pub struct CorrectArgs {
     /// ball-end tool of radius R mm).
     #[arg(long, default_value = "point")]
     pub tool: String,
-    /// `bilinear` (the seed's Coons patches) or `bicubic` (C1 Hermite).
+    /// `bilinear` (Coons patches) or `bicubic` (C1 Hermite).
     #[arg(long, default_value = "bilinear")]
     pub interpolation: String,
     /// The report (JSON); an existing report there keeps its history.

@@ -11,7 +11,7 @@ use crate::{CorrectError, Grid, Interpolation, Surface};
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Tool {
     /// The nodes are the tool's contact points on the surface: a node moves
-    /// by the whole deviation vector (the seed's method).
+    /// by the whole deviation vector (docs/correction.md).
     Point,
     /// A ball-end tool of this radius (mm): the nodes are the ball's centre.
     /// The centre moves along the surface normal at the contact point by the
@@ -30,7 +30,7 @@ pub struct Options {
     pub gain: f64,
     /// The tool.
     pub tool: Tool,
-    /// Bilinear (the seed) or bicubic patches.
+    /// Bilinear (eq. 1, docs/correction.md) or bicubic patches.
     pub interpolation: Interpolation,
     /// Nodes beyond the measured area by at most this much (mm) are corrected
     /// with the deviation extrapolated linearly from the edge; farther ones

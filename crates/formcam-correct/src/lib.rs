@@ -1,5 +1,5 @@
 //! Correction of a mould's milling program from CMM measurements of the
-//! moulded part (seed 002).
+//! moulded part (docs/correction.md).
 //!
 //! * [`Measurements`] — the CMM report: nominal and actual points per
 //!   control section, from CSV or the point features of a DMIS file.

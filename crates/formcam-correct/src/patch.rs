@@ -1,5 +1,5 @@
 //! Coons patches over the grid's facets: the nominal surface and the
-//! deviation field, bilinear (eq. 1 of the seed) or bicubic Hermite (C1,
+//! deviation field, bilinear (eq. 1 of docs/correction.md) or bicubic Hermite (C1,
 //! slopes by finite differences), and the foot of the normal from a point.
 
 use crate::Grid;
@@ -8,7 +8,7 @@ use crate::vec3::{V3, axpy, cross, dot, sub, unit};
 /// How the surface and the deviations are interpolated between measured points.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Interpolation {
-    /// The seed's bilinear Coons patch per facet (eq. 1).
+    /// The bilinear Coons patch per facet (eq. 1, docs/correction.md).
     Bilinear,
     /// Bicubic Hermite (Ferguson) patches with slopes and twists from finite
     /// differences over the grid: C1 across facets.

@@ -1,4 +1,4 @@
-//! Dressing a grinding wheel for ball-screw nut raceways (seed 004): the
+//! Dressing a grinding wheel for ball-screw nut raceways (docs/dressing.md): the
 //! gothic-arch profile, the dresser's path, the simulation of forming and the
 //! feed that keeps the material-removal rate constant.
 //!

@@ -1,4 +1,4 @@
-//! Inverse kinematics (eq. 2 of seed 003): axis values that put the payout point
+//! Inverse kinematics (eq. 2, docs/machines.md): axis values that put the payout point
 //! on the target, `T(x) (r + l tau) = Y(x)`, with the orientation equations where
 //! the machine has more than three driven axes besides the spindle.
 //!

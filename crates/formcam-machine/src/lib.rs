@@ -3,7 +3,7 @@
 //! winders (eye trajectory → axes) and fibre-placement heads, feasibility checks
 //! and the length of band past each key point of the band path.
 //!
-//! A machine is a tree of links (the seed's hierarchical model, like LinuxCNC's
+//! A machine is a tree of links (a hierarchical model, like LinuxCNC's
 //! vismach): each link hangs on its parent by a joint `pre * motion(q) * post`
 //! (Denavit–Hartenberg parameters or a plain origin), driven by an NC axis or
 //! fixed. One link carries the mandrel frame, one key point is the payout point.

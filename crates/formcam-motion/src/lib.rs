@@ -4,7 +4,7 @@
 //!   every axis, and optionally the payout point's position, within tolerance.
 //! * [`preliminary_times`] — eq. 17: each block as fast as its slowest axis
 //!   allows, but no shorter than the controller's least block time `tau`.
-//! * [`pairwise`] — eq. 18, the seed's method: neighbouring blocks slowed pair by
+//! * [`pairwise`] — eq. 18 (docs/winding.md): neighbouring blocks slowed pair by
 //!   pair (`t_i = t*_i / mu_i`) until every velocity jump is within its limit.
 //! * [`global`] — the same problem over all blocks at once (convex): by monotone
 //!   sweeps when no axis reverses between neighbours (the feasible set then has a

@@ -1,4 +1,4 @@
-//! Block times: eq. 17 (preliminary), eq. 18 (pairwise, the seed) and the
+//! Block times: eq. 17 (preliminary), eq. 18 (pairwise, docs/winding.md) and the
 //! global optimum of the same problem.
 
 use clarabel::algebra::CscMatrix;
@@ -188,7 +188,7 @@ fn pair_optimum(
     )
 }
 
-/// Eq. 18, the seed's method: pairs `(i, i+1)` (and `(n, 1)`: the program is
+/// Eq. 18 (docs/winding.md), pairwise: pairs `(i, i+1)` (and `(n, 1)`: the program is
 /// cyclic) are optimised in turn, each only slowing its two blocks, and the sweep
 /// repeats until every pair keeps its velocity jumps.
 pub fn pairwise(

@@ -1,4 +1,4 @@
-//! The payout-eye trajectory (eqs. 7–11 of the spec) and the pull-speed
+//! The payout-eye trajectory (eqs. 7–11, docs/winding.md) and the pull-speed
 //! optimisation (eqs. 12–15).
 //!
 //! For a path point with tangent `tau` (eq. 8–9) the eye lies at `P + l tau`;
@@ -15,7 +15,7 @@
 //!   then min max `u`, then min `∫ (u - U)^2 dx` (LP, LP, QP by Clarabel), with
 //!   `lambda = l + s - k R`, `u = d lambda / dx`.
 //!
-//! The constraints of the spec are checked for every mode: cyclicity, the
+//! The constraints (docs/winding.md) are checked for every mode: cyclicity, the
 //! clearance (`l >= l_min(x)`, the equidistant length) and `l <= l_max`, no slack
 //! (`d(l + s)/dx >= 0`) and no reverse rotation of the mandrel (`dV/dx >= 0`).
 

@@ -4,7 +4,7 @@
 //!
 //! * [`trace`] integrates a pass in path length through its turn-arounds;
 //! * [`shoot`] finds the constant slippage for `mu = "auto"`;
-//! * [`minimax`] solves the concave-meridian problem (eq. 5–6), flaring ends included;
+//! * [`minimax`] solves the concave-meridian problem (eqs. 5–6, docs/winding.md), flaring ends included;
 //! * [`friction_turns`] turns a tube's pass on the tube, held by friction;
 //! * [`plan_layer`] turns a [`LayerSpec`] into a [`Layer`]: pass, pattern, report.
 

@@ -17,7 +17,7 @@
 //! the forward and backward reachable tubes, staying geodesic (`C' = 0`) wherever
 //! the tube allows and running at `|mu| = M` where it does not: pieces of constant
 //! slippage joined to pieces that follow the boundary of the feasible region, as
-//! the seed describes.
+//! docs/winding.md describes.
 
 use formcam_geom::{Jet, Meridian};
 

@@ -8,7 +8,7 @@
 //! dalpha/ds = [mu (sin^2 alpha - r r'' cos^2 alpha / q^2) - r' sin alpha] / (r q)
 //! ```
 //!
-//! The last line is eq. 3 of the spec (`k_g = mu k_n`) rewritten in `s`; it has no
+//! The last line is eq. 3 (docs/winding.md) (`k_g = mu k_n`) rewritten in `s`; it has no
 //! singularity at a turn-around (`alpha = pi/2`), where `dv/dz` of eq. 1 is infinite,
 //! so passes are integrated through their turn-arounds instead of stopping short.
 

@@ -1,4 +1,4 @@
-//! Dressing a grinding wheel for ball-screw nut raceways (seed 004): the
+//! Dressing a grinding wheel for ball-screw nut raceways (docs/dressing.md): the
 //! gothic-arch profile, the dresser's path, the simulation of forming and the
 //! feed that keeps the material-removal rate constant.
 //!
@@ -55,6 +55,7 @@
 //! ```
 
 mod contour;
+mod contour_file;
 mod curve;
 mod dresser;
 mod dressing;
@@ -70,6 +71,7 @@ mod profile;
 mod program;
 
 pub use contour::Contour;
+pub use contour_file::read_contour;
 pub use curve::Piece;
 pub use dresser::{Dresser, DresserSpec, Outline, Side};
 pub use dressing::{Allowance, DressSpec, Dressing, STEP_MIN, dress};

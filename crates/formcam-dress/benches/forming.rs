@@ -1,4 +1,4 @@
-//! The whole dressing simulation of the seed's wheel at a fine step.
+//! The whole dressing simulation of the example's wheel at a fine step.
 
 #![allow(clippy::expect_used, missing_docs)]
 

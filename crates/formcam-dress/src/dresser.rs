@@ -4,8 +4,8 @@
 //! The section is drawn with the grinding wheel below: the dresser's periphery
 //! is its lower side, a straight line between two rounded corners, and its
 //! faces are vertical. The corners are named after the half of the grinding
-//! wheel's profile they dress, as in the seed (eq. 7: the right half with
-//! `r1`): `corner_radius_right` dresses the right half (`x > 0`, whose normals
+//! wheel's profile they dress (docs/dressing.md, eqs. 7-8: the right half
+//! with `rR`): `corner_radius_right` dresses the right half (`x > 0`, whose normals
 //! point up and to the right), so in this section it is the dresser's
 //! lower-**left** corner; `corner_radius_left` is its lower-right corner.
 //!
@@ -42,9 +42,9 @@ impl Side {
 pub struct DresserSpec {
     /// The width `b`.
     pub width: f64,
-    /// The corner that dresses the left half of the profile (`r2` of eq. 8).
+    /// The corner that dresses the left half of the profile (`rL` of docs/dressing.md, eq. 8).
     pub corner_radius_left: f64,
-    /// The corner that dresses the right half (`r1` of eq. 7).
+    /// The corner that dresses the right half (`rR` of docs/dressing.md, eq. 7).
     pub corner_radius_right: f64,
     /// Point A's distance from the dresser's left face (`Yo`); `None`: `b / 2`.
     pub yo: Option<f64>,
@@ -147,7 +147,8 @@ impl Dresser {
         }
     }
 
-    /// Point A when the centre of the corner dressing `side` is at `centre`.
+    /// Point A when the centre of the corner dressing `side` is at `centre`
+    /// (docs/dressing.md, eq. 9).
     pub fn reference(&self, side: Side, centre: Point) -> Point {
         match side {
             // The lower-left corner: the left face at centre.x - r.

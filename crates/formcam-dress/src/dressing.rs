@@ -15,8 +15,9 @@ use crate::{
 pub enum Allowance {
     /// The profile offset outward by this depth, mm.
     Depth(f64),
-    /// A measured or worn contour (`x, y` in the profile's frame, `x`
-    /// non-decreasing, covering the wheel's width, nowhere below the profile).
+    /// A measured or worn contour (`x, y` in the profile's frame: the
+    /// program's `z, x`; `x` non-decreasing, covering the wheel's width,
+    /// nowhere below the profile), as [`crate::read_contour`] reads it.
     Contour(Vec<Point>),
 }
 
@@ -94,7 +95,8 @@ impl Dressing {
     /// highest cusp between the circles of the dressing corner at two
     /// neighbouring path points (their intersection on the profile's side,
     /// measured to the profile), plus what cutting the corners into chords
-    /// leaves (`c^2 / (8 r)`, `c` the chord, `r` the smaller corner radius).
+    /// leaves (`c^2 / (8 r)`, `c` the chord, `r` the smaller corner radius;
+    /// docs/dressing.md, eq. 23).
     pub fn scallop_bound(&self) -> f64 {
         let pieces = self.profile.pieces();
         let mut cusp: f64 = 0.0;
@@ -270,7 +272,7 @@ fn user_contour(profile: &Profile, points: Vec<Point>, h: f64) -> Result<Contour
     let (x0, x1) = (pts[0].x, pts[pts.len() - 1].x);
     let clipped = c.clipped(-half, half).ok_or_else(|| {
         DressError::Contour(format!(
-            "it spans x from {} to {}; it must cover the wheel's width, -{} to {}",
+            "it spans z from {} to {}; it must cover the wheel's width, -{} to {}",
             mm(x0),
             mm(x1),
             mm(half),
@@ -295,7 +297,7 @@ fn user_contour(profile: &Profile, points: Vec<Point>, h: f64) -> Result<Contour
     }
     if worst.0 > 1e-9 {
         return Err(DressError::Contour(format!(
-            "it lies {} below the profile at x = {}: the dresser cannot restore the profile there",
+            "it lies {} below the profile at z = {}: the dresser cannot restore the profile there",
             mm(worst.0),
             mm(worst.1)
         )));

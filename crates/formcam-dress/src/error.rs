@@ -38,6 +38,14 @@ pub enum DressError {
     /// A user's initial wheel contour cannot be used.
     #[error("process.initial_contour: {0}")]
     Contour(String),
+    /// A line of the initial contour's CSV cannot be read.
+    #[error("process.initial_contour, line {line}: {message}")]
+    ContourLine {
+        /// 1-based line of the file.
+        line: usize,
+        /// What is wrong and what is expected.
+        message: String,
+    },
     /// The NC program could not be written.
     #[error("program: {0}")]
     Nc(#[from] NcError),

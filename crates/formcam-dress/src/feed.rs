@@ -1,4 +1,5 @@
-//! Feed control for a constant material-removal rate.
+//! Feed control for a constant material-removal rate (docs/dressing.md,
+//! eqs. 15-21).
 //!
 //! The simulation gives each step the area `A` it removes over its length
 //! `L`, so `a = A / L` (mm²/mm) at a feed `F` (mm/min) removes `MRR = a F`
@@ -13,7 +14,7 @@
 //! least the feed range allows, `T = max(feed_min a_max, feed_max a_min)`
 //! over the steady steps ([`Step::steady`]). Where `a_max / a_min` is no more
 //! than `feed_max / feed_min`, this is the largest target every steady step
-//! holds with its feed within the range; where it is more (the seed's case),
+//! holds with its feed within the range; where it is more (the bundled example),
 //! the heaviest step runs at `feed_min`, holding `T`, and the lightest at
 //! `feed_max`, below it.
 //!

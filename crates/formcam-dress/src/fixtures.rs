@@ -1,8 +1,8 @@
-//! The seed's published wheel and dresser (fig. 9, 11), for unit tests.
+//! The published wheel and dresser of the bundled example, for unit tests.
 
 use crate::{Dresser, DresserSpec, Profile, WheelSpec};
 
-/// The seed's wheel.
+/// The example's wheel.
 pub(crate) fn wheel() -> WheelSpec {
     WheelSpec {
         ball_radius: 1.85,
@@ -15,7 +15,7 @@ pub(crate) fn wheel() -> WheelSpec {
     }
 }
 
-/// The seed's dresser.
+/// The example's dresser.
 pub(crate) fn dresser_spec() -> DresserSpec {
     DresserSpec {
         width: 2.9,
@@ -25,13 +25,13 @@ pub(crate) fn dresser_spec() -> DresserSpec {
     }
 }
 
-/// The seed's profile.
+/// The example's profile.
 #[allow(clippy::unwrap_used)]
 pub(crate) fn profile() -> Profile {
     Profile::new(&wheel()).unwrap()
 }
 
-/// The seed's profile and dresser.
+/// The example's profile and dresser.
 #[allow(clippy::unwrap_used)]
 pub(crate) fn setup() -> (Profile, Dresser) {
     let p = profile();

@@ -1,5 +1,5 @@
 //! Simulation of forming: the dresser stepped along its path, cutting the
-//! wheel's contour exactly at every step (seed fig. 6, 8).
+//! wheel's contour exactly at every step (docs/dressing.md, eqs. 10-14).
 //!
 //! At each step the dresser (its whole section: periphery, both corners and
 //! faces, the arcs as chords of at most `chord` with their vertices on the
@@ -11,8 +11,8 @@
 //! widened and the cut redone.
 //!
 //! Per step: the removed area, where the periphery enters (A) and leaves (B)
-//! the wheel (the cut arc, fig. 8) and the angle of A and B about the
-//! dressing corner's centre (the cut-arc angle `epsilon`).
+//! the wheel (the cut arc) and the angle of A and B about the
+//! dressing corner's centre (the cut-arc angle `epsilon`, eq. 12).
 
 use std::f64::consts::PI;
 
@@ -38,7 +38,7 @@ pub struct Step {
     /// The area removed in the step, mm².
     pub area: f64,
     /// Where the dresser's periphery enters and leaves the wheel (the cut
-    /// arc's ends, A and B of fig. 8).
+    /// arc's ends, E and L of docs/dressing.md, eq. 12).
     pub cut: Option<(Point, Point)>,
     /// The angle from A to B about the dressing corner's centre, rad.
     pub cut_angle: f64,

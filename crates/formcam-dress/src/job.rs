@@ -8,7 +8,7 @@
 //! r2 = 0.296                # mm, fillet
 //! width = 6.0               # mm
 //! flank_tilt_deg = 10.0
-//! # arc_angle_deg = 15.0    # where the flank arc ends (the seed's 0.2618 rad)
+//! # arc_angle_deg = 15.0    # where the flank arc ends (0.2618 rad)
 //! # diameter = 40.0         # mm, for volume rates
 //! [dresser]
 //! width = 2.9
@@ -16,7 +16,7 @@
 //! corner_radius_right = 0.279
 //! # yo = 1.45               # point A from the dresser's left face (b / 2)
 //! [process]
-//! depth = 0.05              # mm dressing allowance (or initial_contour = "worn.csv")
+//! depth = 0.05              # mm dressing allowance (or initial_contour = "worn.csv", columns z,x)
 //! step = 0.01               # mm
 //! feed_min = 50.0           # mm/min
 //! feed_max = 300.0
@@ -28,7 +28,7 @@ use serde::Deserialize;
 
 use crate::{Allowance, DressError, DressSpec, DresserSpec, FeedSpec, Point, WheelSpec};
 
-/// The seed's arc angle (0.2618 rad), degrees.
+/// The default arc angle (0.2618 rad), degrees.
 pub const ARC_ANGLE_DEG: f64 = 15.0;
 
 /// A dressing job.
@@ -59,7 +59,7 @@ pub struct WheelJob {
     pub width: f64,
     /// The flanks' tilt from the wheel's axis, degrees (positive: falling outward).
     pub flank_tilt_deg: f64,
-    /// Where the flank arc ends about its centre, degrees; default 15 (the seed's).
+    /// Where the flank arc ends about its centre, degrees; default 15.
     pub arc_angle_deg: Option<f64>,
     /// The wheel's diameter, mm, for volume rates.
     pub diameter: Option<f64>,
@@ -85,8 +85,9 @@ pub struct DresserJob {
 pub struct ProcessJob {
     /// The dressing allowance, mm (the profile offset outward).
     pub depth: Option<f64>,
-    /// A CSV file of the wheel's contour before dressing (columns `x,y`, mm,
-    /// the profile's frame), read by the caller; instead of `depth`.
+    /// A CSV file of the wheel's contour before dressing (columns `z,x`, mm,
+    /// the program's axes; the older `x,y` too), read by the caller with
+    /// [`crate::read_contour`]; instead of `depth`.
     pub initial_contour: Option<String>,
     /// The step `h`, mm.
     pub step: f64,

@@ -55,6 +55,7 @@
 //! ```
 
 mod contour;
+mod contour_file;
 mod curve;
 mod dresser;
 mod dressing;
@@ -70,6 +71,7 @@ mod profile;
 mod program;
 
 pub use contour::Contour;
+pub use contour_file::read_contour;
 pub use curve::Piece;
 pub use dresser::{Dresser, DresserSpec, Outline, Side};
 pub use dressing::{Allowance, DressSpec, Dressing, STEP_MIN, dress};

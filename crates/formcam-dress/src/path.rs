@@ -1,5 +1,5 @@
 //! The dresser's path: the equidistant of the profile at the corner radius
-//! (eqs. 7-8), pointing away from the wheel's material, in two passes.
+//! (docs/dressing.md, eqs. 7-8), pointing away from the wheel's material, in two passes.
 //!
 //! Each half is dressed from the wheel's edge up to the apex by the corner
 //! named after it, which then leads (it faces the direction of travel and
@@ -18,7 +18,7 @@
 //! Each stretch is cut into equal steps of at most `h`, measured along the
 //! path or along the profile under it, whichever is longer (the fillet's
 //! offset is short: `R2 - r` is small), so every profile sample has a path
-//! point as in the seed. The left pass is the mirror image with the other
+//! point. The left pass is the mirror image with the other
 //! corner radius.
 
 use std::f64::consts::PI;

@@ -1,16 +1,16 @@
 //! The wheel's profile: the gothic arch with fillets and tilted flanks,
 //! built exactly from arcs and segments joined where they are tangent.
 //!
-//! Coordinates (the seed's): the ball's centre at the origin, `x` along the
+//! Coordinates (docs/dressing.md): the ball's centre at the origin, `x` along the
 //! wheel's axis, `y` radial and outward; the wheel's material lies below the
 //! profile, which is symmetric about the `y` axis. The right half, from the
 //! apex outward:
 //!
 //! * the flank arc AB, radius `R1`, centre `O1 = (Rs - R1) (cos a, sin a)`
-//!   (eq. 1), from the apex on the `y` axis down to the polar angle
+//!   (docs/dressing.md, eq. 1), from the apex on the `y` axis down to the polar angle
 //!   `arc_angle` about `O1` (B); it touches the ball at the contact angle `a`;
 //! * the fillet BC, radius `R2`, centre `O2 = O1 + (R1 + R2) (cos a2, sin a2)`
-//!   (eq. 2, `a2` the arc angle), outside the material (concave), tangent to
+//!   (eq. 2, `a2` the arc angle; the pieces: eqs. 3-5), outside the material (concave), tangent to
 //!   AB at B and to the flank at C;
 //! * the flank CD, falling outward at `flank_tilt` from C to the wheel's edge
 //!   `x = B/2` (D).
@@ -42,7 +42,7 @@ pub struct WheelSpec {
     /// falls towards the wheel's edges.
     pub flank_tilt: f64,
     /// The polar angle about `O1` where the flank arc ends and the fillet
-    /// starts (the seed's "arc angle", 0.2618 rad), rad, in `(0, a)`.
+    /// starts (the "arc angle", 0.2618 rad in the bundled example), rad, in `(0, a)`.
     pub arc_angle: f64,
 }
 
@@ -293,7 +293,7 @@ impl Profile {
     }
 
     /// The profile sampled with steps of at most `h` along each piece, from the
-    /// left edge to the right edge (eqs. 3-5); the joints are sample points.
+    /// left edge to the right edge (docs/dressing.md, eqs. 3-5); the joints are sample points.
     pub fn sample(&self, h: f64) -> Vec<Point> {
         let mut out = Vec::new();
         for p in self.pieces() {

@@ -1,7 +1,8 @@
 //! The dressing program: point A along the two passes, a feed per point.
 //!
 //! Axes `Z` (along the wheel's axis, the profile's `x`) and `X` (radial, the
-//! profile's `y`), in that order, as the seed's CLDATA rows `Z, X, F`; the
+//! profile's `y`), in that order, as CLDATA rows `Z, X, F` (docs/dressing.md,
+//! section 5); the
 //! origin at the ball's centre; plane G18. Each pass: a rapid move above its
 //! start, down to it, then one linear block per path point with its own feed
 //! (G01 throughout: the feed changes from point to point, so the arcs are not
@@ -12,7 +13,7 @@
 //! (the last ones of a pass into the block before): a zero-length block
 //! takes no time on a machine, so its feed would mean nothing. A merged
 //! block's feed gives it the time of all its steps (`F = length / sum of
-//! len_i / f_i`), so the removal rate over the block is the steps' common
+//! len_i / f_i`, eq. 22), so the removal rate over the block is the steps' common
 //! rate.
 
 use formcam_nc::{AxisSpec, Block, Feed, Plane, Program};

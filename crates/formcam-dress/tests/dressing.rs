@@ -353,7 +353,7 @@ fn feed_control_holds_the_largest_rate_the_feeds_allow() {
     let d = example();
     let free = check_rate(&d);
     assert!(free >= 10, "{free} steps with a free feed");
-    // The seed's case: the spread is more than the feed range (x6), so the
+    // The example's case: the spread is more than the feed range (x6), so the
     // heaviest step runs at the lowest feed.
     let (u, c) = (
         d.feed.ratio_uncontrolled.unwrap(),

@@ -3,9 +3,11 @@
 //! `panels_svg` stacks panels of line series in one document with readable
 //! tick labels; the process modules draw each process's plots with it.
 
+mod dressing;
 mod panels;
 mod winding;
 
+pub use dressing::{mrr_svg, profile_svg};
 pub use panels::{Panel, Series, panels_svg, range, svg_err, tick_label};
 pub use winding::{eye_svg, layer_svg};
 

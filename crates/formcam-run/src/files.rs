@@ -29,6 +29,9 @@ pub struct RunOutput {
     pub files: Vec<ResultFile>,
     /// One line for the user: what was written and the key figures.
     pub line: String,
+    /// Values the job allows but that look wrong (a unit, most likely), one
+    /// line each naming the field; shown before `line`.
+    pub warnings: Vec<String>,
 }
 
 impl RunOutput {

@@ -6,8 +6,10 @@
 //! with the one line a caller prints. The command line, the local server and
 //! bindings call these functions and only decide where the files go.
 
+mod dress;
 mod error;
 mod files;
 
+pub use dress::{dress, dress_text, is_dress_job};
 pub use error::RunError;
 pub use files::{ResultFile, RunOutput};

@@ -95,6 +95,9 @@ pub(crate) struct Lexed {
     pub(crate) spaced: bool,
     /// The line starts with `/` (block delete).
     pub(crate) block_delete: bool,
+    /// Where comments and `%` marks stand (strict syntax): they end the
+    /// arguments of a G, M or T code.
+    pub(crate) breaks: Vec<usize>,
 }
 
 /// Sinumerik keywords that change the coordinate system.
@@ -202,6 +205,11 @@ pub(crate) fn lex(
                 break;
             }
             b'(' if syntax.paren_comments => lx.paren_comment(i)?,
+            b'%' if syntax.strict => {
+                lx.out.breaks.push(base + i);
+                i + 1
+            }
+            b'/' if syntax.strict => return Err(lx.err("a `/` block delete is not supported")),
             c @ (b'/' | b'%') if lx.out.words.is_empty() && lx.out.complex.is_none() => {
                 lx.out.block_delete |= c == b'/';
                 i + 1
@@ -210,7 +218,7 @@ pub(crate) fn lex(
                 return Err(lx.err("polar coordinates (`@`, `^`) are not supported"));
             }
             c if c.is_ascii_alphabetic() => lx.letters(i)?,
-            _ => lx.stray(i),
+            _ => lx.stray(i)?,
         };
     }
     lx.out.spaced = lx.blanks >= lx.joins;
@@ -240,6 +248,9 @@ impl Lexer<'_> {
                     depth -= 1;
                     if depth == 0 {
                         let end = i + k;
+                        if self.syntax.strict {
+                            self.out.breaks.push(self.base + i);
+                        }
                         self.out.comments.push(self.base + i + 1..self.base + end);
                         self.last_was_word = false;
                         return Ok(end + 1);
@@ -251,13 +262,20 @@ impl Lexer<'_> {
         Err(self.err("a comment `(` without `)`"))
     }
 
-    /// Something that is not a word: noted, skipped a character at a time.
-    fn stray(&mut self, i: usize) -> usize {
+    /// Something that is not a word: refused in the strict syntax, else
+    /// noted and skipped a character at a time.
+    fn stray(&mut self, i: usize) -> Result<usize, NcError> {
+        if self.syntax.strict {
+            let end = self.text[i..]
+                .find([' ', '\t', ';'])
+                .map_or(self.text.len(), |k| i + k);
+            return Err(self.err(format!("cannot read `{}`", &self.text[i..end])));
+        }
         if self.out.complex.is_none() {
             self.out.complex = Some(self.text[i..].trim_end().to_string());
         }
         self.last_was_word = false;
-        i + self.text[i..].chars().next().map_or(1, char::len_utf8)
+        Ok(i + self.text[i..].chars().next().map_or(1, char::len_utf8))
     }
 
     /// Letters at `i`: an assignment, a keyword or a one-letter word.
@@ -420,6 +438,16 @@ impl Lexer<'_> {
             Some(p) => (true, (num.len() - p - 1) as u32),
             None => (false, 0),
         };
+        if self.syntax.strict && matches!(letter, b'N' | b'O') {
+            let after_code = self
+                .out
+                .words
+                .iter()
+                .any(|w| matches!(w.letter, b'G' | b'M' | b'T'));
+            if after_code {
+                return Err(self.err(format!("`{}` after a G, M or T code", letter as char)));
+            }
+        }
         if self.last_was_word {
             self.joins += 1;
         }

@@ -59,7 +59,7 @@ use crate::{Dialect, NcError, Program};
 ///
 /// Fails, writing nothing, when the program is inconsistent
 /// ([`Program::validate`]), has an axis the dialect cannot address, or has a
-/// modulo axis it cannot write within the bound ([`crate::modulo`]: run
+/// modulo axis it cannot write within the bound ([`BOUND_DEG`](crate::BOUND_DEG): run
 /// [`keep_within_turns`](crate::keep_within_turns) first).
 pub fn write(program: &Program, dialect: Dialect, out: &mut String) -> Result<(), NcError> {
     program.validate()?;

@@ -162,8 +162,10 @@ fn read_gcode_with(text: &str, axes: &[AxisSpec], wrapped: bool) -> Result<Progr
 /// Who the words of a line belong to, as they come.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Owner {
-    /// The block, or a G code: they are read.
+    /// The block: they are read.
     Block,
+    /// A G code: they are read (before the block's own).
+    Code,
     /// `G4`, an M code or a `T`: their arguments are passed over.
     Skipped,
 }
@@ -182,12 +184,6 @@ impl Reader<'_> {
     /// Interprets a lexed line whose text is `line` (of `src`); errors say
     /// what is wrong.
     fn gcode_line(&mut self, line: &str, src: &str, lx: &Lexed) -> Result<(), String> {
-        if lx.block_delete {
-            return Err("a `/` block delete is not supported".into());
-        }
-        if let Some(c) = &lx.complex {
-            return Err(format!("cannot read `{c}`"));
-        }
         let comments: Vec<String> = lx
             .comments
             .iter()
@@ -208,17 +204,23 @@ impl Reader<'_> {
         self.block(words, comments)
     }
 
-    /// The words of a line: modes taken on, axis words and `F` collected.
+    /// The words of a line: modes taken on, axis words and `F` collected
+    /// (the arguments of G codes first, then the block's own words, as
+    /// rs274 parsers order them).
     fn line_words(&mut self, lx: &Lexed) -> Result<GcodeLine, String> {
         let mut out = GcodeLine::default();
         let mut owner = Owner::Block;
-        let mut seen_code = false;
+        let mut after = 0;
+        let (mut args, mut own) = (Vec::new(), Vec::new());
         for w in &lx.words {
-            let letter = w.letter as char;
-            match w.letter {
-                b'G' => {
-                    seen_code = true;
-                    owner = Owner::Block;
+            // A comment or `%` ends the arguments of a code.
+            if lx.breaks.iter().any(|b| (after..w.whole.start).contains(b)) {
+                owner = Owner::Block;
+            }
+            after = w.whole.end;
+            match (w.letter, owner) {
+                (b'G', _) => {
+                    owner = Owner::Code;
                     let Some(code) = GCode::of(w.value, true) else {
                         return Err(format!("`G{}` is not a G code", w.value));
                     };
@@ -239,30 +241,27 @@ impl Reader<'_> {
                     }
                     self.modal.apply(code);
                 }
-                b'M' | b'T' => {
-                    seen_code = true;
-                    owner = Owner::Skipped;
-                }
-                b'N' | b'O' if seen_code => {
-                    return Err(format!("`{letter}` after a G, M or T code"));
-                }
-                b'N' | b'O' => {}
-                _ if owner == Owner::Skipped => {}
-                b'F' => out.f_word = Some(w.value),
-                _ => {
-                    if let Some(k) = self
-                        .axes
-                        .iter()
-                        .position(|a| a.name.len() == 1 && a.name.starts_with(letter))
-                    {
-                        out.axis_words.push((k, w.value, None));
-                    } else if AXIS_LETTERS.contains(letter) {
-                        return Err(format!(
-                            "axis word {letter} is not one of the program's axes ({})",
-                            self.axis_names()
-                        ));
-                    }
-                }
+                (b'M' | b'T', _) => owner = Owner::Skipped,
+                (b'N' | b'O', _) | (_, Owner::Skipped) => {}
+                (_, Owner::Code) => args.push(w),
+                (_, Owner::Block) => own.push(w),
+            }
+        }
+        for w in args.into_iter().chain(own) {
+            let letter = w.letter as char;
+            if letter == 'F' {
+                out.f_word = Some(w.value);
+            } else if let Some(k) = self
+                .axes
+                .iter()
+                .position(|a| a.name.len() == 1 && a.name.starts_with(letter))
+            {
+                out.axis_words.push((k, w.value, None));
+            } else if AXIS_LETTERS.contains(letter) {
+                return Err(format!(
+                    "axis word {letter} is not one of the program's axes ({})",
+                    self.axis_names()
+                ));
             }
         }
         for a in &lx.assignments {
@@ -502,4 +501,40 @@ pub fn read_cldata(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
         }
     }
     Ok(r.program)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn x_a() -> [AxisSpec; 2] {
+        [AxisSpec::linear("X"), AxisSpec::rotary("A")]
+    }
+
+    #[test]
+    fn words_are_read_in_the_order_of_rs274_parsers() {
+        // A G code's arguments before the block's own words; the words after
+        // an M code, a `T` or `G4` are theirs; a comment or `%` ends them.
+        let text = "G1 F100\nX3 N10 G90 X10\nM3 X7 (c) A5\nT1 % X8\nG4 X9 G1 A6\n";
+        let p = read_gcode(text, &x_a()).unwrap_or_else(|e| panic!("{e}"));
+        let targets: Vec<Vec<f64>> = p.blocks.iter().map(|b| b.target.clone()).collect();
+        assert_eq!(
+            targets,
+            [
+                vec![3.0, 0.0],
+                vec![3.0, 5.0],
+                vec![8.0, 5.0],
+                vec![8.0, 6.0]
+            ]
+        );
+        assert_eq!(p.blocks[1].comment.as_deref(), Some("c"));
+    }
+
+    #[test]
+    fn syntax_errors_come_before_errors_of_meaning() {
+        let e = read_gcode("G0 X0\nG1 X1\nG1 X# F10\n", &x_a()).unwrap_err();
+        assert!(matches!(e, NcError::Parse { line: 3, .. }), "{e}");
+        let e = read_gcode("G0 X0\nG0 N10 X1\n/G0 X2\n", &x_a()).unwrap_err();
+        assert!(matches!(e, NcError::Parse { line: 2, .. }), "{e}");
+    }
 }

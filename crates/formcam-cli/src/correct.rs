@@ -9,7 +9,7 @@ use formcam_correct::{
     CorrectError, Corrector, Grid, Interpolation, Measurements, NodeTable, Options, Placement,
     Tool, Totals, check_displacement, smooth,
 };
-use formcam_nc::{Flavor, NodeKind, ToolpathOptions, read_toolpath};
+use formcam_nc::{Dialect, NodeKind, ToolpathOptions, read_toolpath};
 use plotters::prelude::*;
 use serde_json::{Value, json};
 
@@ -154,9 +154,9 @@ impl Source {
         if text.trim().is_empty() {
             return Err(at("the program is empty".into()));
         }
-        let flavor = match dialect {
-            Some(d) => Flavor::from_name(d).map_err(|e| CliError(format!("--dialect: {e}")))?,
-            None => Flavor::from_extension(&ext(path)),
+        let dialect = match dialect {
+            Some(d) => Dialect::from_name(d).map_err(|e| CliError(format!("--dialect: {e}")))?,
+            None => Dialect::from_extension(&ext(path)).unwrap_or(Dialect::Iso),
         };
         if let Some(m) = max_segment
             && !(m.is_finite() && m > 0.0)
@@ -171,7 +171,7 @@ impl Source {
         let tp = read_toolpath(
             &text,
             &ToolpathOptions {
-                flavor,
+                dialect,
                 arc_tolerance_mm: arc_tolerance,
                 max_segment_mm: max_segment,
             },
@@ -459,7 +459,7 @@ fn run_args(a: &CorrectArgs) -> Result<String, CliError> {
         Source::Gcode(tp) => (
             tp.arcs_linearised,
             tp.moves_split,
-            format!("{:?}", tp.flavor()).to_lowercase(),
+            tp.dialect().name().to_string(),
         ),
         Source::Table(_) => (0, 0, "csv".into()),
     };

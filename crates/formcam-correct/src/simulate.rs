@@ -12,7 +12,7 @@
 //! The true error after each round is also measured without noise on a
 //! dense check grid.
 
-use formcam_nc::{Flavor, NodeKind, Toolpath, ToolpathOptions, read_toolpath};
+use formcam_nc::{Dialect, NodeKind, Toolpath, ToolpathOptions, read_toolpath};
 
 use crate::vec3::{V3, add, axpy, cross, dot, norm, scale, sub, unit};
 use crate::{
@@ -486,7 +486,7 @@ fn feed_nodes(program: &str) -> Result<(Toolpath, Vec<V3>), CorrectError> {
     let tp = read_toolpath(
         program,
         &ToolpathOptions {
-            flavor: Flavor::Iso,
+            dialect: Dialect::Iso,
             arc_tolerance_mm: 0.001,
             max_segment_mm: None,
         },

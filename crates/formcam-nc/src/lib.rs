@@ -11,8 +11,7 @@
 //! * [`write_template`] writes it with a user [`Template`] read from TOML.
 //! * Modulo rotary axes (a winder's spindle) are written within
 //!   [`BOUND_DEG`] (100 turns): re-zeroed by `G92` or held modulo 360° with
-//!   a direction, per dialect; [`keep_within_turns`] prepares a program
-//!   ([`modulo`]).
+//!   a direction, per dialect; [`keep_within_turns`] prepares a program.
 //! * [`read_gcode`], [`read_gcode_in`] and [`read_cldata`] read programs back.
 //! * [`read_toolpath`] reads a 3-axis milling program as lines and tool-path
 //!   nodes (arcs linearised); [`Toolpath::write`] writes it back with moved
@@ -30,19 +29,23 @@
 //! # Ok::<(), formcam_nc::NcError>(())
 //! ```
 
+mod dialect;
 mod error;
-pub mod modulo;
+mod lex;
+mod modal;
+mod modulo;
 mod num;
-pub mod post;
+mod post;
 mod program;
-pub mod read;
-pub mod template;
+mod read;
+mod template;
 mod toolpath;
 
+pub use dialect::Dialect;
 pub use error::NcError;
 pub use modulo::{BOUND_DEG, ModuloStyle, keep_within_turns};
-pub use post::{Dialect, write};
+pub use post::write;
 pub use program::{AxisSpec, Block, Feed, Motion, Plane, Program};
 pub use read::{read_cldata, read_gcode, read_gcode_in};
 pub use template::{Template, write_template};
-pub use toolpath::{Flavor, Node, NodeKind, Toolpath, ToolpathOptions, read_toolpath};
+pub use toolpath::{Node, NodeKind, Toolpath, ToolpathOptions, read_toolpath};

@@ -1,5 +1,8 @@
-//! The output buffer of the writers and a small fixed-decimal number
-//! formatter: `decimals` places, trailing zeros stripped, never `-0`.
+//! The output buffer of the writers and the one fixed-decimal number
+//! formatter every writer uses: `decimals` places, rounded half away from
+//! zero, never `-0`; trailing zeros stripped ([`push`], the posts and
+//! templates) or kept ([`push_fixed`], the toolpath writer, which then
+//! follows the program's own style).
 
 use crate::NcError;
 
@@ -117,6 +120,18 @@ impl Out {
         self.flush();
         self.vec
     }
+
+    /// Takes the bytes written so far out as a string, leaving the buffer
+    /// empty (and reusable).
+    pub(crate) fn take_string(&mut self) -> String {
+        self.flush();
+        let bytes = std::mem::take(&mut self.vec);
+        // Only whole `&str`s and ASCII bytes were pushed: this is valid UTF-8.
+        match String::from_utf8(bytes) {
+            Ok(s) => s,
+            Err(e) => String::from_utf8_lossy(e.as_bytes()).into_owned(),
+        }
+    }
 }
 
 /// A word of at most 8 bytes for [`Out::word`].
@@ -160,14 +175,47 @@ pub(crate) fn with_out(
     r
 }
 
-/// `v` scaled by `10^decimals` and rounded (half away from zero); `None`
-/// when it does not fit an `i64` comfortably (or is not finite).
+/// `v` scaled by `10^decimals` and rounded (half away from zero, exactly as
+/// `f64::round`); `None` when it does not fit an `i64` comfortably (or is not
+/// finite).
 #[inline(always)]
 pub(crate) fn scaled(v: f64, decimals: u32) -> Option<i64> {
     let s = v * POW10[decimals.min(9) as usize];
-    // `as` truncates towards zero; adding ±0.5 first rounds half away from zero
-    // without a call to `round` (not an instruction on baseline x86-64).
-    (s.abs() < 9.0e18).then(|| (s + 0.5f64.copysign(s)) as i64)
+    if s.is_nan() || s.abs() >= 9.0e18 {
+        return None;
+    }
+    // `as` truncates towards zero and the fraction it drops is exact, so
+    // this rounds as `round` does without a call to it (not an instruction
+    // on baseline x86-64).
+    let t = s as i64;
+    let frac = s - t as f64;
+    Some(t + i64::from(frac >= 0.5) - i64::from(frac <= -0.5))
+}
+
+/// `v` rounded to `decimals` places: the value [`push_fixed`] prints.
+pub(crate) fn rounded(v: f64, decimals: u32) -> f64 {
+    let k = 10f64.powi(decimals as i32);
+    (v * k).round() / k
+}
+
+/// `a` and `b` print the same with `decimals` places.
+pub(crate) fn same_printed(a: f64, b: f64, decimals: u32) -> bool {
+    let k = 10f64.powi(decimals as i32);
+    (a * k).round() == (b * k).round()
+}
+
+/// Writes `v` with exactly `decimals` places (trailing zeros kept, no point
+/// for `decimals = 0`), never `-0`.
+pub(crate) fn push_fixed(out: &mut Out, v: f64, decimals: u32) {
+    match scaled(v, decimals) {
+        Some(s) if decimals <= 9 && s.unsigned_abs() < 9_000_000_000_000_000 => {
+            push_digits(out, s, decimals, false, false);
+        }
+        _ => {
+            let d = decimals as usize;
+            out.s(&format!("{v:.d$}"));
+        }
+    }
 }
 
 /// Writes `v` with at most `decimals` places. `keep_point` writes a decimal
@@ -191,10 +239,18 @@ const PAIRS: [[u8; 2]; 100] = {
     t
 };
 
-/// Writes the scaled integer `s` (value `s / 10^decimals`): digits in place,
-/// right to left, two at a time.
+/// Writes the scaled integer `s` (value `s / 10^decimals`), trailing zeros
+/// stripped.
 #[inline(always)]
 pub(crate) fn push_scaled(out: &mut Out, s: i64, decimals: u32, keep_point: bool) {
+    push_digits(out, s, decimals, keep_point, true);
+}
+
+/// Writes the scaled integer `s` (value `s / 10^decimals`): digits in place,
+/// right to left, two at a time; `trim` strips trailing zeros of the
+/// fraction.
+#[inline(always)]
+fn push_digits(out: &mut Out, s: i64, decimals: u32, keep_point: bool, trim: bool) {
     // Every index below is under `start + NUM_MAX <= CAP`; masking with
     // `CAP - 1` (a power of two) only tells the compiler so.
     const M: usize = CAP - 1;
@@ -260,7 +316,7 @@ pub(crate) fn push_scaled(out: &mut Out, s: i64, decimals: u32, keep_point: bool
     // Trailing zeros of the fraction go, and its point when nothing is left
     // (unless `keep_point`).
     let mut end = start + total;
-    if d > 0 {
+    if d > 0 && trim {
         let point = end - d - 1;
         while end > point + 1 && buf[(end - 1) & M] == b'0' {
             end -= 1;
@@ -316,6 +372,57 @@ mod tests {
         let mut s = Out::new(Vec::new());
         push_uint(&mut s, 10);
         assert_eq!(s.finish(), b"10");
+    }
+
+    fn fixed(v: f64, d: u32) -> String {
+        let mut s = Out::new(Vec::new());
+        push_fixed(&mut s, v, d);
+        s.take_string()
+    }
+
+    #[test]
+    fn fixed_places() {
+        assert_eq!(fixed(-0.0004, 3), "0.000");
+        assert_eq!(fixed(12.0, 0), "12");
+        assert_eq!(fixed(-4.56789, 4), "-4.5679");
+        assert_eq!(fixed(0.05, 3), "0.050");
+        assert_eq!(fixed(1e300, 2).len(), 304);
+        assert_eq!(rounded(-4.56789, 4), -4.5679);
+        assert!(same_printed(1.0004, 1.0, 3) && !same_printed(1.0005, 1.0, 3));
+    }
+
+    #[test]
+    fn rounding_is_round_half_away_from_zero() {
+        // The largest double below 0.5, and odd integers above 2^52, where
+        // adding 0.5 before truncating rounds the wrong way.
+        for v in [
+            0.499_999_999_999_999_94,
+            -0.499_999_999_999_999_94,
+            4_503_599_627_370_497.0,
+            -4_503_599_627_370_497.0,
+            2.5,
+            -2.5,
+            1e-300,
+        ] {
+            assert_eq!(scaled(v, 0), Some(v.round() as i64), "{v}");
+        }
+        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+        for _ in 0..100_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let r = (seed >> 11) as f64 / (1u64 << 53) as f64;
+            let v = (r - 0.5) * 10f64.powi((seed % 24) as i32 - 2);
+            for d in [0, 3, 4] {
+                let want = (v * POW10[d as usize]).round();
+                let got = scaled(v, d);
+                if want.abs() < 9.0e18 {
+                    assert_eq!(got, Some(want as i64), "{v} {d}");
+                } else {
+                    assert_eq!(got, None, "{v} {d}");
+                }
+            }
+        }
     }
 
     #[test]

@@ -45,103 +45,21 @@
 //!   become `[`/`]`.
 //!
 //! The G-code writers cut programs of 65 536 blocks or more into runs written
-//! by up to 8 threads (each run starting from the modal state the runs before
-//! it leave); the text is the same as written by one thread.
+//! in parallel on rayon's global pool (each run starting from the modal state
+//! the runs before it leave); the text is the same as written in one run.
 
 mod cldata;
 mod gcode;
 
-use std::fmt;
-use std::str::FromStr;
-
 use crate::modulo::{self, ModuloStyle};
 use crate::num::{self, Out};
-use crate::{NcError, Program};
-
-/// The NC dialects formcam writes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Dialect {
-    /// ISO 4343 APT text CLDATA with machine-axis `GOTO` records (`.cls`).
-    Cldata,
-    /// Siemens Sinumerik 840D part program (`.MPF`).
-    Sinumerik840d,
-    /// ISO 6983 / Fanuc-style G-code (`.nc`).
-    Iso,
-    /// LinuxCNC rs274ngc (`.ngc`).
-    LinuxCnc,
-    /// Marlin firmware with axes X, A, B (FiberPath / Cyclone winders) (`.gcode`).
-    MarlinXab,
-}
-
-impl Dialect {
-    /// Every dialect, in the order of [`Dialect::NAMES`].
-    pub const ALL: [Dialect; 5] = [
-        Dialect::Cldata,
-        Dialect::Sinumerik840d,
-        Dialect::Iso,
-        Dialect::LinuxCnc,
-        Dialect::MarlinXab,
-    ];
-
-    /// The dialects' names.
-    pub const NAMES: [&'static str; 5] =
-        ["cldata", "sinumerik-840d", "iso", "linuxcnc", "marlin-xab"];
-
-    /// The dialect called `name` (`"cldata"`, `"sinumerik-840d"`, `"iso"`,
-    /// `"linuxcnc"`, `"marlin-xab"`).
-    pub fn from_name(name: &str) -> Result<Self, NcError> {
-        Self::NAMES
-            .iter()
-            .position(|n| *n == name)
-            .map(|i| Self::ALL[i])
-            .ok_or_else(|| NcError::UnknownDialect {
-                name: name.to_string(),
-                allowed: Self::NAMES.join(", "),
-            })
-    }
-
-    /// The dialect's name, as [`Dialect::from_name`] takes it.
-    pub fn name(self) -> &'static str {
-        match self {
-            Dialect::Cldata => "cldata",
-            Dialect::Sinumerik840d => "sinumerik-840d",
-            Dialect::Iso => "iso",
-            Dialect::LinuxCnc => "linuxcnc",
-            Dialect::MarlinXab => "marlin-xab",
-        }
-    }
-
-    /// The file extension, without the dot.
-    pub fn extension(self) -> &'static str {
-        match self {
-            Dialect::Cldata => "cls",
-            Dialect::Sinumerik840d => "mpf",
-            Dialect::Iso => "nc",
-            Dialect::LinuxCnc => "ngc",
-            Dialect::MarlinXab => "gcode",
-        }
-    }
-}
-
-impl FromStr for Dialect {
-    type Err = NcError;
-
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::from_name(s)
-    }
-}
-
-impl fmt::Display for Dialect {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
+use crate::{Dialect, NcError, Program};
 
 /// Writes `program` in `dialect`, appending to `out`.
 ///
 /// Fails, writing nothing, when the program is inconsistent
 /// ([`Program::validate`]), has an axis the dialect cannot address, or has a
-/// modulo axis it cannot write within the bound ([`crate::modulo`]: run
+/// modulo axis it cannot write within the bound ([`BOUND_DEG`](crate::BOUND_DEG): run
 /// [`keep_within_turns`](crate::keep_within_turns) first).
 pub fn write(program: &Program, dialect: Dialect, out: &mut String) -> Result<(), NcError> {
     program.validate()?;

@@ -13,7 +13,7 @@ pub struct AxisSpec {
     pub rotary: bool,
     /// A rotary axis the controller holds within a turn (a winder's spindle):
     /// the program re-zeroes it or writes it modulo 360° with a direction,
-    /// per dialect (see [`crate::modulo`]). Block targets still hold its
+    /// per dialect (see [`ModuloStyle`](crate::ModuloStyle)). Block targets still hold its
     /// unwound angle.
     pub modulo: bool,
 }

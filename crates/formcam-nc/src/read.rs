@@ -3,11 +3,12 @@
 //!
 //! # G-code ([`read_gcode`])
 //!
-//! Parsed with the `gcode` crate, after a light pre-pass for Sinumerik:
-//! `NAME=value` words (`J1=12.5`, `X=3`; separated from other words by a
-//! space, the value a plain number) are taken out of the line before the
-//! parser sees it. Numbers are read again from the source text in `f64` (the
-//! parser's own values are `f32`).
+//! Lexed by the crate's G-code lexer (the milling reader's, in its strict
+//! syntax: every letter needs a number, nothing else may stand on a line),
+//! numbers in `f64`; Sinumerik `NAME=value` words (`J1=12.5`, `X=3`,
+//! `A=ACP(90)`) are read as assignments. The G codes go through the modal
+//! state both G-code readers share. All lines are lexed before any is
+//! interpreted, so a line that cannot be lexed is reported first.
 //!
 //! Understood: `G0`/`G00` and `G1`/`G01` (modal), `G90`/`G91` (absolute,
 //! incremental), `G93`/`G94` (inverse time: `F` on every feed block, block
@@ -15,11 +16,13 @@
 //! axes, `N` numbers, `%`, `O` numbers (the comment on the `O` line is the
 //! program's name), `(…)` and `;…` comments. Other G codes (`G17`, `G21`,
 //! `G71`, `G54`, …), M codes, `T`, `S` and words of letters that are no NC
-//! axis are passed over; the arguments of `G4` (dwell) too. Errors: arcs
-//! (`G2`/`G3`), inch units (`G20`/`G70`), feed per revolution (`G95`), an
-//! axis word (`X Y Z A B C U V W` or `NAME=`) that is not one of the given
-//! axes, axis words before any `G0`/`G1`, a feed block without a feed, and
-//! whatever the parser rejects — every error with its line number.
+//! axis are passed over; the words after `G4` (dwell), an M code or a `T`
+//! (up to the next G code) too. Errors: arcs (`G2`/`G3`), inch units
+//! (`G20`/`G70`/`G700`), feed per revolution (`G95`), an axis word
+//! (`X Y Z A B C U V W` or `NAME=`) that is not one of the given axes, axis
+//! words before any `G0`/`G1`, a feed block without a feed, `N` or `O` after
+//! a G, M or T code, a `/` block delete, and anything that is not a word —
+//! every error with its line number and text.
 //!
 //! Modulo rotary axes ([`crate::modulo`]) come back as unwound angles:
 //! `G92` with axis words sets those axes' values without moving (the blocks
@@ -46,123 +49,11 @@
 //! and inch or per-revolution feeds are errors. `$` continuation lines are not
 //! supported.
 
-use gcode::{Code, CommentKind};
-
+use crate::lex::{self, Lexed, Syntax, line_error};
+use crate::modal::{GCode, Modal, MotionMode};
 use crate::modulo::{Direction, unwrap};
 use crate::program::check_axes;
 use crate::{AxisSpec, Block, Dialect, Feed, Motion, NcError, Program};
-
-/// What the pre-pass took out of one line.
-#[derive(Default)]
-struct LineExtra {
-    /// `NAME=value` words, with the direction of `ACP(..)`, `ACN(..)`, `DC(..)`.
-    named: Vec<(String, f64, Option<Direction>)>,
-    /// The line starts with an `O` program number.
-    program_number: bool,
-}
-
-/// Takes `NAME=value` words out of `line` (blanking them) and notes `O` lines.
-fn prepass(line: &str, lineno: usize, out: &mut String) -> Result<LineExtra, NcError> {
-    let b = line.as_bytes();
-    let mut bytes = b.to_vec();
-    let mut extra = LineExtra::default();
-    let t = line.trim_start();
-    extra.program_number = (t.starts_with('O') || t.starts_with('o'))
-        && t[1..].starts_with(|c: char| c.is_ascii_digit());
-    let mut depth = 0usize;
-    let mut i = 0;
-    while i < b.len() {
-        let c = b[i];
-        if depth > 0 {
-            match c {
-                b'(' => depth += 1,
-                b')' => depth -= 1,
-                _ => {}
-            }
-            i += 1;
-            continue;
-        }
-        match c {
-            b'(' => depth = 1,
-            b';' => break,
-            b'=' => {
-                let mut s = i;
-                while s > 0 && (b[s - 1].is_ascii_alphanumeric() || b[s - 1] == b'_') {
-                    s -= 1;
-                }
-                if s == i || !b[s].is_ascii_alphabetic() {
-                    return Err(NcError::parse(
-                        lineno,
-                        "`=` without an address name before it",
-                    ));
-                }
-                let name = &line[s..i];
-                let mut e = i + 1;
-                while e < b.len() && b[e] == b' ' {
-                    e += 1;
-                }
-                // `ACP(`, `ACN(`, `DC(`: a direction, the number in parentheses.
-                let mut dir = None;
-                for (f, d) in [
-                    ("ACP(", Direction::Positive),
-                    ("ACN(", Direction::Negative),
-                    ("DC(", Direction::Shortest),
-                ] {
-                    if b[e..]
-                        .get(..f.len())
-                        .is_some_and(|w| w.eq_ignore_ascii_case(f.as_bytes()))
-                    {
-                        dir = Some(d);
-                        e += f.len();
-                        break;
-                    }
-                }
-                let vs = e;
-                if e < b.len() && (b[e] == b'-' || b[e] == b'+') {
-                    e += 1;
-                }
-                while e < b.len() && (b[e].is_ascii_digit() || b[e] == b'.') {
-                    e += 1;
-                }
-                let value: f64 = line[vs..e].parse().map_err(|_| {
-                    NcError::parse(lineno, format!("`{name}=` is not followed by a number"))
-                })?;
-                if dir.is_some() {
-                    if b.get(e) != Some(&b')') {
-                        return Err(NcError::parse(
-                            lineno,
-                            format!("`{name}=`: the number in parentheses is not closed"),
-                        ));
-                    }
-                    e += 1;
-                }
-                extra.named.push((name.to_string(), value, dir));
-                bytes[s..e].fill(b' ');
-                i = e;
-                continue;
-            }
-            _ => {}
-        }
-        i += 1;
-    }
-    // Only ASCII bytes were blanked, so the line is still UTF-8.
-    out.push_str(&String::from_utf8_lossy(&bytes));
-    Ok(extra)
-}
-
-/// The value of an argument, read again from the source in `f64`.
-fn value_f64(src: &str, span: gcode::core::Span, value: &gcode::Value) -> Option<f64> {
-    let text = src.get(span.start..span.end())?;
-    let digits: String = text
-        .chars()
-        .skip(1)
-        .filter(|c| !c.is_whitespace())
-        .collect();
-    digits.parse::<f64>().ok().or(match value {
-        gcode::Value::Literal(v) => Some(f64::from(*v)),
-        _ => None,
-    })
-}
 
 const AXIS_LETTERS: &str = "XYZABCUVW";
 
@@ -170,9 +61,8 @@ const AXIS_LETTERS: &str = "XYZABCUVW";
 struct Reader<'a> {
     axes: &'a [AxisSpec],
     program: Program,
-    motion: Option<Motion>,
-    incremental: bool,
-    inverse: bool,
+    /// The G-code modal state.
+    modal: Modal,
     feed: Option<f64>,
     /// Where the axes stand (unwound angles for modulo axes).
     pos: Vec<f64>,
@@ -191,9 +81,7 @@ impl<'a> Reader<'a> {
         Ok(Self {
             axes,
             program: Program::new("", axes.to_vec()),
-            motion: None,
-            incremental: false,
-            inverse: false,
+            modal: Modal::default(),
             feed: None,
             pos: vec![0.0; axes.len()],
             offset: vec![0.0; axes.len()],
@@ -256,207 +144,218 @@ pub fn read_gcode_in(text: &str, axes: &[AxisSpec], dialect: Dialect) -> Result<
 fn read_gcode_with(text: &str, axes: &[AxisSpec], wrapped: bool) -> Result<Program, NcError> {
     let mut r = Reader::new(axes)?;
     r.wrapped = wrapped;
-    let mut src = String::with_capacity(text.len());
-    let mut extras = Vec::new();
-    for (i, line) in text.split('\n').enumerate() {
-        if i > 0 {
-            src.push('\n');
-        }
-        extras.push(prepass(line, i + 1, &mut src)?);
+    // Every line lexed first, then interpreted in order.
+    let lines = lex::lines(text)
+        .enumerate()
+        .map(|(i, (range, _))| {
+            let line = &text[range.clone()];
+            lex::lex(line, range.start, i + 1, Syntax::PROGRAM).map(|lx| (line, lx))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    for (i, (line, lx)) in lines.iter().enumerate() {
+        r.gcode_line(line, text, lx)
+            .map_err(|what| line_error(i + 1, line, what))?;
     }
-    let parsed = gcode::parse(&src).map_err(|d| {
-        d.iter()
-            .min_by_key(|d| d.span.line)
-            .map_or(NcError::parse(0, "G-code parse error"), |d| {
-                NcError::parse(d.span.line + 1, d.kind.to_string())
-            })
-    })?;
-    let mut by_line: Vec<Option<&gcode::Block>> = vec![None; extras.len()];
-    for b in &parsed.blocks {
-        if let Some(slot) = by_line.get_mut(b.span.line) {
-            *slot = Some(b);
+    Ok(r.program)
+}
+
+/// Who the words of a line belong to, as they come.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Owner {
+    /// The block: they are read.
+    Block,
+    /// A G code: they are read (before the block's own).
+    Code,
+    /// `G4`, an M code or a `T`: their arguments are passed over.
+    Skipped,
+}
+
+/// What one G-code line says besides its modes.
+#[derive(Default)]
+struct GcodeLine {
+    /// (axis index, value, direction)
+    axis_words: Vec<(usize, f64, Option<Direction>)>,
+    /// `G92`.
+    preset: bool,
+    f_word: Option<f64>,
+}
+
+impl Reader<'_> {
+    /// Interprets a lexed line whose text is `line` (of `src`); errors say
+    /// what is wrong.
+    fn gcode_line(&mut self, line: &str, src: &str, lx: &Lexed) -> Result<(), String> {
+        let comments: Vec<String> = lx
+            .comments
+            .iter()
+            .map(|c| src[c.clone()].trim().to_string())
+            .collect();
+        let t = line.trim_start();
+        let program_number =
+            t.starts_with(['O', 'o']) && t[1..].starts_with(|c: char| c.is_ascii_digit());
+        let words = self.line_words(lx)?;
+        if program_number {
+            if self.program.name.is_empty()
+                && let Some(c) = comments.first()
+            {
+                self.program.name = c.clone();
+            }
+            return Ok(());
         }
+        self.block(words, comments)
     }
 
-    for (i, (block, extra)) in by_line.into_iter().zip(&extras).enumerate() {
-        let lineno = i + 1;
-        let mut comments: Vec<String> = Vec::new();
-        // (axis index, value, direction)
-        let mut axis_words: Vec<(usize, f64, Option<Direction>)> = Vec::new();
-        let mut preset = false;
-        let mut f_word: Option<f64> = None;
-        let mut word = |r: &Reader<'_>, letter: char, v: f64| -> Result<(), NcError> {
-            let letter = letter.to_ascii_uppercase();
+    /// The words of a line: modes taken on, axis words and `F` collected
+    /// (the arguments of G codes first, then the block's own words, as
+    /// rs274 parsers order them).
+    fn line_words(&mut self, lx: &Lexed) -> Result<GcodeLine, String> {
+        let mut out = GcodeLine::default();
+        let mut owner = Owner::Block;
+        let mut after = 0;
+        let (mut args, mut own) = (Vec::new(), Vec::new());
+        for w in &lx.words {
+            // A comment or `%` ends the arguments of a code.
+            if lx.breaks.iter().any(|b| (after..w.whole.start).contains(b)) {
+                owner = Owner::Block;
+            }
+            after = w.whole.end;
+            match (w.letter, owner) {
+                (b'G', _) => {
+                    owner = Owner::Code;
+                    let Some(code) = GCode::of(w.value, true) else {
+                        return Err(format!("`G{}` is not a G code", w.value));
+                    };
+                    match code {
+                        GCode::Motion(MotionMode::ArcCw | MotionMode::ArcCcw) => {
+                            return Err("arcs (G2/G3) are not supported".into());
+                        }
+                        GCode::Inch => return Err("inch units are not supported".into()),
+                        GCode::PerRevolution => {
+                            return Err("feed per revolution (G95) is not supported".into());
+                        }
+                        GCode::PresetOther => {
+                            return Err("G92.1, G92.2 and G92.3 are not supported".into());
+                        }
+                        GCode::Preset => out.preset = true,
+                        GCode::Dwell => owner = Owner::Skipped,
+                        _ => {}
+                    }
+                    self.modal.apply(code);
+                }
+                (b'M' | b'T', _) => owner = Owner::Skipped,
+                (b'N' | b'O', _) | (_, Owner::Skipped) => {}
+                (_, Owner::Code) => args.push(w),
+                (_, Owner::Block) => own.push(w),
+            }
+        }
+        for w in args.into_iter().chain(own) {
+            let letter = w.letter as char;
             if letter == 'F' {
-                f_word = Some(v);
-            } else if let Some(k) = r
+                out.f_word = Some(w.value);
+            } else if let Some(k) = self
                 .axes
                 .iter()
                 .position(|a| a.name.len() == 1 && a.name.starts_with(letter))
             {
-                axis_words.push((k, v, None));
+                out.axis_words.push((k, w.value, None));
             } else if AXIS_LETTERS.contains(letter) {
-                return Err(NcError::parse(
-                    lineno,
-                    format!(
-                        "axis word {letter} is not one of the program's axes ({})",
-                        r.axis_names()
-                    ),
+                return Err(format!(
+                    "axis word {letter} is not one of the program's axes ({})",
+                    self.axis_names()
                 ));
             }
-            Ok(())
-        };
-        if let Some(b) = block {
-            for c in &b.comments {
-                let v = match c.kind {
-                    CommentKind::Parentheses => c.value.strip_suffix(')').unwrap_or(&c.value),
-                    _ => c.value.as_str(),
-                };
-                comments.push(v.trim().to_string());
-            }
-            for code in &b.codes {
-                let Code::General(g) = code else { continue };
-                let minor = g.number.minor().map(|m| m.get());
-                let mut dwell = false;
-                match (g.number.major(), minor) {
-                    (0, None) => r.motion = Some(Motion::Rapid),
-                    (1, None) => r.motion = Some(Motion::Linear),
-                    (2 | 3, None) => {
-                        return Err(NcError::parse(lineno, "arcs (G2/G3) are not supported"));
-                    }
-                    (4, None) => dwell = true,
-                    (20 | 70, None) => {
-                        return Err(NcError::parse(lineno, "inch units are not supported"));
-                    }
-                    (90, None) => r.incremental = false,
-                    (92, None) => preset = true,
-                    (92, Some(_)) => {
-                        return Err(NcError::parse(
-                            lineno,
-                            "G92.1, G92.2 and G92.3 are not supported",
-                        ));
-                    }
-                    (91, None) => r.incremental = true,
-                    (93, None) => r.inverse = true,
-                    (94, None) => r.inverse = false,
-                    (95, None) => {
-                        return Err(NcError::parse(
-                            lineno,
-                            "feed per revolution (G95) is not supported",
-                        ));
-                    }
-                    _ => {}
-                }
-                if dwell {
-                    continue;
-                }
-                for a in &g.args {
-                    let v = value_f64(&src, a.span, &a.value).ok_or_else(|| {
-                        NcError::parse(lineno, format!("word {} has no numeric value", a.letter))
-                    })?;
-                    word(&r, a.letter, v)?;
-                }
-            }
-            for w in &b.word_addresses {
-                let v = value_f64(&src, w.span, &w.value).ok_or_else(|| {
-                    NcError::parse(lineno, format!("word {} has no numeric value", w.letter))
-                })?;
-                word(&r, w.letter, v)?;
-            }
         }
-        for (name, v, dir) in &extra.named {
-            match r
+        for a in &lx.assignments {
+            match self
                 .axes
                 .iter()
-                .position(|a| a.name.eq_ignore_ascii_case(name))
+                .position(|x| x.name.eq_ignore_ascii_case(&a.name))
             {
-                Some(k) => axis_words.push((k, *v, *dir)),
+                Some(k) => out.axis_words.push((k, a.value, a.direction)),
                 None => {
-                    return Err(NcError::parse(
-                        lineno,
-                        format!(
-                            "`{name}=` is not one of the program's axes ({})",
-                            r.axis_names()
-                        ),
+                    return Err(format!(
+                        "`{}=` is not one of the program's axes ({})",
+                        a.name,
+                        self.axis_names()
                     ));
                 }
             }
         }
+        Ok(out)
+    }
 
-        if extra.program_number {
-            if r.program.name.is_empty()
-                && let Some(c) = comments.first()
-            {
-                r.program.name = c.clone();
-            }
-            continue;
-        }
+    /// The block of a line (or its presets and comments).
+    fn block(&mut self, words: GcodeLine, comments: Vec<String>) -> Result<(), String> {
+        let GcodeLine {
+            mut axis_words,
+            preset,
+            f_word,
+        } = words;
         if let Some(f) = f_word {
             if !(f.is_finite() && f > 0.0) {
-                return Err(NcError::parse(lineno, format!("feed F{f} is not positive")));
+                return Err(format!("feed F{f} is not positive"));
             }
-            if !r.inverse {
-                r.feed = Some(f);
+            if !self.modal.inverse_time {
+                self.feed = Some(f);
             }
         }
         let inline = (!comments.is_empty()).then(|| comments.join("; "));
         if preset {
             // `G92`: the axes named take these values where they stand.
             for (k, v, _) in axis_words.drain(..) {
-                r.offset[k] = r.pos[k] - v;
+                self.offset[k] = self.pos[k] - v;
             }
-            r.rezeroed = true;
+            self.rezeroed = true;
         }
         if axis_words.is_empty() {
             if let Some(c) = inline {
-                r.comment_line(c);
+                self.comment_line(c);
             }
-            continue;
+            return Ok(());
         }
-        let Some(kind) = r.motion else {
-            return Err(NcError::parse(lineno, "axis words before any G0 or G1"));
+        let kind = match self.modal.motion {
+            Some(MotionMode::Rapid) => Motion::Rapid,
+            Some(MotionMode::Linear) => Motion::Linear,
+            _ => return Err("axis words before any G0 or G1".into()),
         };
-        let mut target = r.pos.clone();
+        let mut target = self.pos.clone();
         for (k, v, dir) in axis_words {
-            let wrapped = r.wrapped && r.axes[k].modulo;
-            target[k] = match (r.incremental, dir) {
-                (true, _) => r.pos[k] + v,
-                (false, Some(d)) => unwrap(r.pos[k], v, d),
+            let wrapped = self.wrapped && self.axes[k].modulo;
+            target[k] = match (self.modal.incremental, dir) {
+                (true, _) => self.pos[k] + v,
+                (false, Some(d)) => unwrap(self.pos[k], v, d),
                 (false, None) if wrapped => {
                     let d = if v.is_sign_negative() {
                         Direction::Negative
                     } else {
                         Direction::Positive
                     };
-                    unwrap(r.pos[k], v.abs(), d)
+                    unwrap(self.pos[k], v.abs(), d)
                 }
-                (false, None) => v + r.offset[k],
+                (false, None) => v + self.offset[k],
             };
         }
         let feed = match kind {
             Motion::Rapid => Feed::None,
-            Motion::Linear if r.inverse => match f_word {
+            Motion::Linear if self.modal.inverse_time => match f_word {
                 Some(f) => Feed::InverseTime(60.0 / f),
-                None => {
-                    return Err(NcError::parse(lineno, "inverse-time (G93) move without F"));
-                }
+                None => return Err("inverse-time (G93) move without F".into()),
             },
-            Motion::Linear => match r.feed {
+            Motion::Linear => match self.feed {
                 Some(f) => Feed::PerMinute(f),
-                None => return Err(NcError::parse(lineno, "feed move without a feed (F)")),
+                None => return Err("feed move without a feed (F)".into()),
             },
         };
-        let comment = r.join_comment(inline);
-        r.pos.clone_from(&target);
-        r.program.blocks.push(Block {
+        let comment = self.join_comment(inline);
+        self.pos.clone_from(&target);
+        self.program.blocks.push(Block {
             kind,
             target,
             feed,
             comment,
-            rezero: std::mem::take(&mut r.rezeroed),
+            rezero: std::mem::take(&mut self.rezeroed),
         });
+        Ok(())
     }
-    Ok(r.program)
 }
 
 fn number(text: &str, lineno: usize, what: &str) -> Result<f64, NcError> {
@@ -602,4 +501,40 @@ pub fn read_cldata(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
         }
     }
     Ok(r.program)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn x_a() -> [AxisSpec; 2] {
+        [AxisSpec::linear("X"), AxisSpec::rotary("A")]
+    }
+
+    #[test]
+    fn words_are_read_in_the_order_of_rs274_parsers() {
+        // A G code's arguments before the block's own words; the words after
+        // an M code, a `T` or `G4` are theirs; a comment or `%` ends them.
+        let text = "G1 F100\nX3 N10 G90 X10\nM3 X7 (c) A5\nT1 % X8\nG4 X9 G1 A6\n";
+        let p = read_gcode(text, &x_a()).unwrap_or_else(|e| panic!("{e}"));
+        let targets: Vec<Vec<f64>> = p.blocks.iter().map(|b| b.target.clone()).collect();
+        assert_eq!(
+            targets,
+            [
+                vec![3.0, 0.0],
+                vec![3.0, 5.0],
+                vec![8.0, 5.0],
+                vec![8.0, 6.0]
+            ]
+        );
+        assert_eq!(p.blocks[1].comment.as_deref(), Some("c"));
+    }
+
+    #[test]
+    fn syntax_errors_come_before_errors_of_meaning() {
+        let e = read_gcode("G0 X0\nG1 X1\nG1 X# F10\n", &x_a()).unwrap_err();
+        assert!(matches!(e, NcError::Parse { line: 3, .. }), "{e}");
+        let e = read_gcode("G0 X0\nG0 N10 X1\n/G0 X2\n", &x_a()).unwrap_err();
+        assert!(matches!(e, NcError::Parse { line: 2, .. }), "{e}");
+    }
 }

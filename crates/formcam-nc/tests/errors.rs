@@ -11,9 +11,9 @@ use formcam_nc::{
 
 #[test]
 fn unknown_dialect_lists_the_allowed_ones() {
-    let e = Dialect::from_name("fanuc").unwrap_err();
+    let e = Dialect::from_name("heidenhain").unwrap_err();
     let m = e.to_string();
-    assert!(m.contains("`fanuc`"), "{m}");
+    assert!(m.contains("`heidenhain`"), "{m}");
     for n in Dialect::NAMES {
         assert!(m.contains(n), "{m}");
     }

@@ -1,6 +1,8 @@
 //! The G-code writers (Sinumerik 840D, ISO, LinuxCNC, Marlin): one engine,
 //! one [`Style`] per dialect.
 
+use rayon::prelude::*;
+
 use crate::modulo::{self, TURN};
 use crate::num::{self, DEG, FEED, FEED_FINE, MM, Out, Word};
 use crate::post::push_comment_text;
@@ -259,40 +261,29 @@ fn footer(out: &mut Out, st: &Style, ln: &mut LineNo) {
     }
 }
 
-/// Programs with at least this many blocks are written by several threads.
+/// Programs with at least this many blocks are written in several runs.
 const PARALLEL_MIN: usize = 1 << 16;
+
+/// The most runs a program is cut into.
+const RUNS_MAX: usize = 8;
 
 /// Writes `p` (already validated) in the style `st`.
 pub(super) fn write(p: &Program, st: &Style, out: &mut Out) -> Result<(), NcError> {
-    let threads = if p.blocks.len() >= PARALLEL_MIN {
-        std::thread::available_parallelism().map_or(1, |n| n.get().min(8))
+    let runs = if p.blocks.len() >= PARALLEL_MIN {
+        rayon::current_num_threads().min(RUNS_MAX)
     } else {
         1
     };
-    write_in(p, st, out, threads)
+    write_in(p, st, out, runs)
 }
 
-/// Writes `p` with the blocks cut into `threads` runs written side by side.
-/// Each run starts from the modal state the runs before it leave
-/// ([`state_before`]), so the text is the same for any number of threads.
-fn write_in(p: &Program, st: &Style, out: &mut Out, threads: usize) -> Result<(), NcError> {
-    let words = axis_words(p, st)?;
-    let mod_words: Vec<Option<String>> = p
-        .axes
-        .iter()
-        .map(|a| {
-            a.modulo.then(|| match st.modulo {
-                ModWrite::Acp => format!(" {}=", a.name),
-                ModWrite::Rezero | ModWrite::Signed => format!(" {}", a.name),
-            })
-        })
-        .collect();
-    let words = Words {
-        axes: words,
-        modulo: mod_words,
-    };
-    let n = words.axes.len();
-    let per_block = 16 + 12 * n;
+/// Writes `p` with the blocks cut into `runs` runs written in parallel on
+/// rayon's global pool. Each run starts from the modal state the runs before
+/// it leave ([`state_before`]), so the text is the same for any number of
+/// runs.
+fn write_in(p: &Program, st: &Style, out: &mut Out, runs: usize) -> Result<(), NcError> {
+    let words = Words::new(p, st)?;
+    let per_block = 16 + 12 * words.axes.len();
     out.reserve(256 + p.blocks.len() * per_block);
     let mut ln = LineNo {
         on: st.line_numbers,
@@ -301,41 +292,35 @@ fn write_in(p: &Program, st: &Style, out: &mut Out, threads: usize) -> Result<()
     header(out, p, st, &mut ln);
     let first_n = ln.next;
     let len = p.blocks.len();
-    let threads = threads.clamp(1, len.max(1));
-    if threads == 1 {
-        let mut state = state_before(p, st, 0, first_n);
-        write_blocks(p, st, &words, 0..len, &mut state, out);
-        ln.next = state.ln.next;
-    } else {
-        let chunk = len.div_ceil(threads);
-        let words = &words;
-        let runs: Vec<_> = (0..threads)
-            .map(|c| (c * chunk).min(len)..((c + 1) * chunk).min(len))
-            .collect();
-        std::thread::scope(|scope| {
-            // The first run goes straight into `out` on this thread, the
-            // others into buffers of their own, appended after it.
-            let handles: Vec<_> = runs[1..]
-                .iter()
-                .cloned()
+    let chunk = len.div_ceil(runs.clamp(1, len.max(1))).max(1);
+    let ranges: Vec<_> = (0..len.div_ceil(chunk).max(1))
+        .map(|c| c * chunk..((c + 1) * chunk).min(len))
+        .collect();
+    let write_run = |range: std::ops::Range<usize>, out: &mut Out| {
+        let mut state = state_before(p, st, range.start, first_n);
+        write_blocks(p, st, &words, range, &mut state, out);
+    };
+    // The first run goes straight into `out`, the others into buffers of
+    // their own, appended after it in order.
+    let (first, rest) = ranges
+        .split_first()
+        .map_or((0..0, &[][..]), |(f, r)| (f.clone(), r));
+    let (_, parts): ((), Vec<Vec<u8>>) = rayon::join(
+        || write_run(first, out),
+        || {
+            rest.par_iter()
                 .map(|range| {
-                    scope.spawn(move || {
-                        let mut o = Out::new(Vec::with_capacity(range.len() * per_block));
-                        let mut state = state_before(p, st, range.start, first_n);
-                        write_blocks(p, st, words, range, &mut state, &mut o);
-                        o.finish()
-                    })
+                    let mut o = Out::new(Vec::with_capacity(range.len() * per_block));
+                    write_run(range.clone(), &mut o);
+                    o.finish()
                 })
-                .collect();
-            let mut state = state_before(p, st, 0, first_n);
-            write_blocks(p, st, words, runs[0].clone(), &mut state, out);
-            for h in handles {
-                let part = h.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
-                out.append(&part);
-            }
-        });
-        ln.next = first_n + 10 * len as u64;
+                .collect()
+        },
+    );
+    for part in &parts {
+        out.append(part);
     }
+    ln.next = first_n + 10 * len as u64;
     footer(out, st, &mut ln);
     Ok(())
 }
@@ -345,6 +330,25 @@ fn write_in(p: &Program, st: &Style, out: &mut Out, threads: usize) -> Result<()
 struct Words {
     axes: Vec<(AxisWord, u32)>,
     modulo: Vec<Option<String>>,
+}
+
+impl Words {
+    fn new(p: &Program, st: &Style) -> Result<Self, NcError> {
+        let modulo = p
+            .axes
+            .iter()
+            .map(|a| {
+                a.modulo.then(|| match st.modulo {
+                    ModWrite::Acp => format!(" {}=", a.name),
+                    ModWrite::Rezero | ModWrite::Signed => format!(" {}", a.name),
+                })
+            })
+            .collect();
+        Ok(Self {
+            axes: axis_words(p, st)?,
+            modulo,
+        })
+    }
 }
 
 /// The modal state of the writer between blocks.
@@ -635,7 +639,7 @@ mod tests {
     }
 
     #[test]
-    fn the_same_text_for_any_number_of_threads() {
+    fn the_same_text_for_any_number_of_runs() {
         let p = mixed(20_000);
         for st in [&SINUMERIK, &ISO, &LINUXCNC] {
             let one = {
@@ -646,7 +650,7 @@ mod tests {
             for threads in [2, 3, 7, 64] {
                 let mut o = Out::new(Vec::new());
                 write_in(&p, st, &mut o, threads).unwrap();
-                assert!(o.finish() == one, "{} with {threads} threads", st.name);
+                assert!(o.finish() == one, "{} in {threads} runs", st.name);
             }
         }
         let mut p = p;
@@ -661,7 +665,7 @@ mod tests {
         for threads in [2, 5, 16] {
             let mut o = Out::new(Vec::new());
             write_in(&p, &MARLIN, &mut o, threads).unwrap();
-            assert!(o.finish() == one, "marlin with {threads} threads");
+            assert!(o.finish() == one, "marlin in {threads} runs");
         }
     }
 

@@ -29,6 +29,9 @@ pub struct RunOutput {
     pub files: Vec<ResultFile>,
     /// One line for the user: what was written and the key figures.
     pub line: String,
+    /// Remarks for the user's error stream (implausible values), one each,
+    /// naming the job file.
+    pub warnings: Vec<String>,
 }
 
 impl RunOutput {

@@ -8,6 +8,8 @@
 
 mod error;
 mod files;
+mod wind;
 
 pub use error::RunError;
 pub use files::{ResultFile, RunOutput};
+pub use wind::{wind, wind_file, wind_furthest};

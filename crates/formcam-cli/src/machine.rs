@@ -1,4 +1,4 @@
-//! `formcam machine show|fk`, and reading machine files for `wind axes`.
+//! `formcam machine show|fk`: reading machine files (or shipped machines by name).
 
 use std::fmt::Write as _;
 use std::fs;
@@ -32,9 +32,14 @@ pub fn parse(path: &Path, text: &str) -> Result<Machine, CliError> {
     })
 }
 
-/// `formcam machine show MACHINE`.
+/// `formcam machine show MACHINE`: a machine file, or a shipped machine by
+/// name when no such file exists.
 pub fn show(path: &Path) -> Result<String, CliError> {
-    Ok(load(path)?.table())
+    let name = path.to_string_lossy();
+    match formcam_machine::shipped::shipped(&name) {
+        Some(s) if !path.exists() => Ok(parse(path, s.text)?.table()),
+        _ => Ok(load(path)?.table()),
+    }
 }
 
 /// A row of an axes file: `x` when given, the axes in the machine's order (rad, mm).

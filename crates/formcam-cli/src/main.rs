@@ -1,19 +1,17 @@
 //! The `formcam` command line: reads job files, runs the processes of the
 //! library crates and writes their outputs atomically.
 
-mod checks;
 mod correct;
 mod dress;
 mod machine;
 mod output;
-mod program;
 mod wind;
-mod windfile;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
+use formcam_program::Stage;
 
 /// formcam: CAM for filament winding, fibre placement, mould correction and wheel dressing.
 #[derive(Debug, Parser)]
@@ -27,25 +25,26 @@ struct Cli {
 enum Command {
     /// Filament winding: `formcam wind JOB -o OUT` writes the whole program;
     /// the subcommands stop after a stage.
-    #[command(args_conflicts_with_subcommands = true)]
+    #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
     Wind {
         #[command(subcommand)]
         what: Option<WindCommand>,
-        /// The job file (TOML with [mandrel], [winding], [eye], [machine], [post]).
+        /// The job file (TOML with [mandrel], [winding] or [[layer]], [eye],
+        /// [machine], [post]; or a Cyclone/FiberPath `.wind` document).
+        #[arg(required = true)]
         job: Option<PathBuf>,
         /// Output folder (program.<ext>, blocks.csv, axes.csv, the eye and path
         /// outputs, summary.json).
-        #[arg(short, long)]
+        #[arg(short, long, required = true)]
         output: Option<PathBuf>,
         /// `.wind` jobs: the eye's clearance over the mandrel, mm (it rides
         /// parallel to the axis at the mandrel's radius plus this; default 25).
         #[arg(long, value_name = "MM")]
         eye_clearance: Option<f64>,
-        /// `.wind` jobs: checks whose failure is accepted (comma-separated:
-        /// slack, clearance, l_max, cyclicity, reverse-rotation, limits,
-        /// unreachable, timing, acceleration); TOML jobs use `[checks] allow`.
+        /// `.wind` jobs: checks whose failure is accepted (comma-separated);
+        /// TOML jobs use `[checks] allow`.
         #[arg(long, value_name = "CHECKS", value_delimiter = ',')]
-        allow: Vec<checks::Check>,
+        allow: Vec<wind::AllowCheck>,
     },
     /// Mould correction: `formcam correct --measurements cmm.csv --program
     /// mould.nc -o corrected.nc`, or `formcam correct JOB.toml -o OUTDIR` (a
@@ -129,7 +128,7 @@ enum CorrectCommand {
 enum MachineCommand {
     /// The chain as a readable table: links, joints, axes, limits, key points.
     Show {
-        /// The machine file (TOML).
+        /// The machine file (TOML), or a shipped machine's name (`winder-4axis`).
         machine: PathBuf,
     },
     /// Forward kinematics: every key point for each row of an axes file.
@@ -165,37 +164,36 @@ fn main() -> ExitCode {
             eye_clearance,
             allow,
         } => {
-            let picked = match what {
-                Some(WindCommand::Path { job, output }) => Ok((job, output, wind::Stage::Path)),
-                Some(WindCommand::Eye { job, output }) => Ok((job, output, wind::Stage::Eye)),
-                Some(WindCommand::Axes { job, output }) => Ok((job, output, wind::Stage::Axes)),
-                None => match (whole, whole_out) {
-                    (Some(job), Some(output)) if job.extension().is_some_and(|e| e == "wind") => {
-                        return finish(
-                            wind::run_wind_file(
-                                &job,
-                                &output,
-                                eye_clearance.unwrap_or(windfile::EYE_CLEARANCE_MM),
-                                &allow,
-                            )
-                            .map(|s| println!("{s}")),
-                        );
-                    }
-                    (Some(_), Some(_)) if !allow.is_empty() => Err(CliError(
-                        "--allow: TOML jobs name the checks they accept in [checks] allow".into(),
-                    )),
-                    (Some(_), Some(_)) if eye_clearance.is_some() => Err(CliError(
-                        "--eye-clearance: for .wind jobs; TOML jobs place the eye in [eye]".into(),
-                    )),
-                    (Some(job), Some(output)) => Ok((job, output, wind::Stage::Program)),
-                    _ => Err(CliError(
-                        "wind: give a job and -o OUTDIR (or a subcommand: path, eye, axes)".into(),
-                    )),
-                },
+            let picked = match (what, whole, whole_out) {
+                (Some(WindCommand::Path { job, output }), ..) => (job, output, Stage::Path),
+                (Some(WindCommand::Eye { job, output }), ..) => (job, output, Stage::Eye),
+                (Some(WindCommand::Axes { job, output }), ..) => (job, output, Stage::Axes),
+                (None, Some(job), Some(output)) => (job, output, Stage::Program),
+                (None, ..) => Cli::command()
+                    .error(
+                        clap::error::ErrorKind::MissingRequiredArgument,
+                        "wind: give a job and -o OUTDIR (or a subcommand: path, eye, axes)",
+                    )
+                    .exit(),
             };
-            picked.and_then(|(job, output, stage)| {
-                wind::run(&job, &output, stage).map(|s| println!("{s}"))
-            })
+            match picked {
+                (job, output, Stage::Program) if job.extension().is_some_and(|e| e == "wind") => {
+                    wind::run_wind_file(
+                        &job,
+                        &output,
+                        eye_clearance.unwrap_or(formcam_program::EYE_CLEARANCE_MM),
+                        &allow,
+                    )
+                    .map(|s| println!("{s}"))
+                }
+                _ if !allow.is_empty() => Err(CliError(
+                    "--allow: TOML jobs name the checks they accept in [checks] allow".into(),
+                )),
+                _ if eye_clearance.is_some() => Err(CliError(
+                    "--eye-clearance: for .wind jobs; TOML jobs place the eye in [eye]".into(),
+                )),
+                (job, output, stage) => wind::run(&job, &output, stage).map(|s| println!("{s}")),
+            }
         }
         Command::Machine {
             what: MachineCommand::Show { machine },

@@ -7,8 +7,30 @@ use std::path::Path;
 
 use crate::CliError;
 
-/// Writes all `files` (name, contents) into `dir`, creating it if needed.
-/// Nothing is renamed into place until every temporary file is complete.
+/// Writes the files of a run into `dir` (see [`write_all`]).
+pub fn write_run(dir: &Path, run: &formcam_run::RunOutput) -> Result<(), CliError> {
+    let files: Vec<(&str, Vec<u8>)> = run
+        .files
+        .iter()
+        .map(|f| (f.name.as_str(), f.bytes.clone()))
+        .collect();
+    write_all(dir, &files)
+}
+
+/// The temporary name of the file `name` (which may lie in a subfolder,
+/// `layer-01/path.csv`) inside `dir`, beside its target.
+fn temp_name(dir: &Path, name: &str) -> std::path::PathBuf {
+    let target = dir.join(name);
+    let file = target
+        .file_name()
+        .map(|f| f.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    target.with_file_name(format!(".{file}.tmp"))
+}
+
+/// Writes all `files` (name, contents) into `dir`, creating it (and the
+/// subfolders the names give) if needed. Nothing is renamed into place until
+/// every temporary file is complete.
 pub fn write_all<S: AsRef<str>>(dir: &Path, files: &[(S, Vec<u8>)]) -> Result<(), CliError> {
     fs::create_dir_all(dir).map_err(|e| {
         CliError(format!(
@@ -19,11 +41,15 @@ pub fn write_all<S: AsRef<str>>(dir: &Path, files: &[(S, Vec<u8>)]) -> Result<()
     let mut temps = Vec::new();
     for (name, data) in files {
         let name = name.as_ref();
-        let tmp = dir.join(format!(".{name}.tmp"));
-        let res = fs::File::create(&tmp).and_then(|mut f| {
-            f.write_all(data)?;
-            f.sync_all()
-        });
+        let tmp = temp_name(dir, name);
+        let res = tmp
+            .parent()
+            .map_or(Ok(()), fs::create_dir_all)
+            .and_then(|()| fs::File::create(&tmp))
+            .and_then(|mut f| {
+                f.write_all(data)?;
+                f.sync_all()
+            });
         if let Err(e) = res {
             for t in &temps {
                 let _ = fs::remove_file(t);

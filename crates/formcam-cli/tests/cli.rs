@@ -449,6 +449,13 @@ fn machine_show_prints_the_chain() {
     assert_eq!(row("spindle").as_deref(), Some("yes"), "{text}");
     assert_eq!(row("yaw").as_deref(), Some("no"), "{text}");
     assert_eq!(row("carriage").as_deref(), Some("-"), "{text}");
+    // A shipped machine by name shows as its file does.
+    let by_name = formcam()
+        .args(["machine", "show", "winder-6axis"])
+        .output()
+        .unwrap();
+    assert!(by_name.status.success());
+    assert_eq!(String::from_utf8_lossy(&by_name.stdout), text);
 }
 
 #[test]

@@ -164,7 +164,9 @@ fn unknown_members_are_ignored_with_a_warning() {
 }
 
 #[test]
-fn invalid_documents_are_refused_for_their_reason() {
+fn invalid_documents_fail_with_one_line_and_write_nothing() {
+    // The reader's rules are tested in formcam-program; here the contract of
+    // the command: exit status, one line naming the file and the member.
     type Edit = Box<dyn Fn(&mut Value)>;
     let cases: Vec<(&str, Edit, &[&str])> = vec![
         (
@@ -173,162 +175,12 @@ fn invalid_documents_are_refused_for_their_reason() {
             &["schemaVersion", "not supported"],
         ),
         (
-            "version-malformed",
-            Box::new(|d| d["schemaVersion"] = json!("1")),
-            &["schemaVersion"],
-        ),
-        (
-            "missing-diameter",
-            Box::new(|d| {
-                d["mandrelParameters"]
-                    .as_object_mut()
-                    .unwrap()
-                    .remove("diameter");
-            }),
-            &["mandrelParameters.diameter", "missing"],
-        ),
-        (
-            "zero-length",
-            Box::new(|d| d["mandrelParameters"]["windLength"] = json!(0)),
-            &["mandrelParameters.windLength", "> 0"],
-        ),
-        (
-            "width-as-text",
-            Box::new(|d| d["towParameters"]["width"] = json!("10")),
-            &["towParameters.width", "number"],
-        ),
-        (
-            "missing-feed",
-            Box::new(|d| {
-                d.as_object_mut().unwrap().remove("defaultFeedRate");
-            }),
-            &["defaultFeedRate", "missing"],
-        ),
-        (
-            "missing-layers",
-            Box::new(|d| {
-                d.as_object_mut().unwrap().remove("layers");
-            }),
-            &["layers", "missing"],
-        ),
-        (
-            "wind-type",
-            Box::new(|d| d["layers"][1]["windType"] = json!("polar")),
-            &["layers[1].windType", "polar"],
-        ),
-        (
-            "angle-zero",
-            Box::new(|d| d["layers"][1]["windAngle"] = json!(0)),
-            &["layers[1].windAngle", "(0, 90]"],
-        ),
-        (
-            "angle-over-90",
-            Box::new(|d| d["layers"][1]["windAngle"] = json!(95)),
-            &["layers[1].windAngle", "(0, 90]"],
-        ),
-        (
-            "pattern-fraction",
-            Box::new(|d| d["layers"][1]["patternNumber"] = json!(2.5)),
-            &["layers[1].patternNumber", "integer"],
-        ),
-        (
-            "skip-index-zero",
-            Box::new(|d| d["layers"][1]["skipIndex"] = json!(0)),
-            &["layers[1].skipIndex", "integer"],
-        ),
-        (
             "not-coprime",
             Box::new(|d| {
                 d["layers"][1]["patternNumber"] = json!(4);
                 d["layers"][1]["skipIndex"] = json!(2);
             }),
             &["layers[1].skipIndex", "coprime"],
-        ),
-        (
-            "lead-in-too-long",
-            Box::new(|d| d["layers"][1]["leadInMM"] = json!(400)),
-            &["layers[1].leadInMM", "windLength"],
-        ),
-        (
-            "circuits-not-divisible",
-            // 24 circuits: two divide them, five do not.
-            Box::new(|d| d["layers"][1]["patternNumber"] = json!(5)),
-            &["layers[1].patternNumber", "24 circuits"],
-        ),
-        (
-            "lock-not-a-multiple",
-            Box::new(|d| d["layers"][1]["lockDegrees"] = json!(100)),
-            &[
-                "layers[1].lockDegrees",
-                "multiple of 180 / patternNumber = 60",
-            ],
-        ),
-        (
-            "lock-aliases",
-            // 2 x 120 = 240 deg: two slots, plus the skip of one: three, all on one.
-            Box::new(|d| d["layers"][1]["lockDegrees"] = json!(120)),
-            &["layers[1].lockDegrees", "not coprime"],
-        ),
-        (
-            "lead-out-zero",
-            Box::new(|d| d["layers"][1]["leadOutDegrees"] = json!(0)),
-            &["layers[1].leadOutDegrees", "> 0"],
-        ),
-        (
-            "expanding-cone",
-            Box::new(|d| d["mandrelParameters"]["endDiameter"] = json!(120)),
-            &["mandrelParameters.endDiameter", "expanding cone"],
-        ),
-        (
-            "hoop-on-cone",
-            Box::new(|d| d["mandrelParameters"]["endDiameter"] = json!(90)),
-            &["layers[0]", "hoop layer on a cone"],
-        ),
-        (
-            "cone-unreachable",
-            Box::new(|d| {
-                d["mandrelParameters"]["endDiameter"] = json!(60);
-                d["layers"] = json!([helical(45.0, 1, 180.0)]);
-            }),
-            &["layers[0].windAngle", "too steep", "36.8699"],
-        ),
-        (
-            "profile",
-            Box::new(|d| d["mandrelParameters"]["profile"] = json!({ "type": "vonKarman" })),
-            &["mandrelParameters.profile", "vonKarman", "does not wind"],
-        ),
-        (
-            "profile-and-cone",
-            Box::new(|d| {
-                d["mandrelParameters"]["profile"] = json!({ "type": "vonKarman" });
-                d["mandrelParameters"]["endDiameter"] = json!(50);
-            }),
-            &["mandrelParameters.profile", "mutually exclusive"],
-        ),
-        (
-            "friction",
-            Box::new(|d| d["layers"][1]["frictionLambda"] = json!(0.1)),
-            &["layers[1].frictionLambda", "profile mandrel"],
-        ),
-        (
-            "friction-negative",
-            Box::new(|d| d["layers"][1]["frictionLambda"] = json!(-0.1)),
-            &["layers[1].frictionLambda", ">= 0"],
-        ),
-        (
-            "terminal-not-last",
-            Box::new(|d| d["layers"][0]["terminal"] = json!(true)),
-            &["layers[0].terminal", "last layer"],
-        ),
-        (
-            "terminal-not-bool",
-            Box::new(|d| d["layers"][0]["terminal"] = json!("yes")),
-            &["layers[0].terminal", "true or false"],
-        ),
-        (
-            "skip-without-rotation",
-            Box::new(|d| d["layers"][0] = json!({ "windType": "skip" })),
-            &["layers[0].mandrelRotation", "missing"],
         ),
         (
             "misspelt-member",

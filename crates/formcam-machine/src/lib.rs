@@ -13,6 +13,7 @@ mod error;
 pub mod file;
 pub mod ik;
 mod machine;
+pub mod shipped;
 mod target;
 pub mod urdf;
 

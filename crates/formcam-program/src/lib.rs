@@ -1,2 +1,24 @@
 //! The wound program: a winding job planned layer by layer, moved to the
 //! machine's axes, cut into timed NC blocks and written by a post-processor.
+//!
+//! [`WindJob`] is the whole job (read from TOML by [`WindJob::from_toml`] or
+//! from a Cyclone/FiberPath `.wind` document by [`WindJob::from_wind`]);
+//! [`plan_program`] (or [`plan_until`] a [`Stage`]) runs the one pipeline —
+//! layers, payout eye, axes, blocks and times, the checks — into a
+//! [`WoundProgram`], which [`write_program`] writes with the job's post.
+
+mod blocks;
+pub mod checks;
+mod error;
+mod job;
+mod plan;
+mod post;
+mod windfile;
+
+pub use blocks::{Assembled, LayerBlocks, TimedBlock, axis_limits, nc};
+pub use checks::{Check, ChecksJob, Violated};
+pub use error::{ProgramError, in_layer};
+pub use job::{Ik, JobMachine, Layers, MachineSource, MotionJob, Post, Times, WindImport, WindJob};
+pub use plan::{LayerBody, Stage, Wound, WoundLayer, WoundProgram, plan_program, plan_until};
+pub use post::write_program;
+pub use windfile::{EYE_CLEARANCE_MM, SPEC_VERSION};

@@ -27,4 +27,28 @@ pub enum RunError {
     /// A plot could not be drawn.
     #[error(transparent)]
     Plot(#[from] formcam_plot::PlotError),
+    /// A winding job that cannot be read, planned or written.
+    #[error("{}{}{source}", path.display(), if source.is_syntax() { ":" } else { ": " })]
+    Wind {
+        /// The job file.
+        path: PathBuf,
+        /// What failed.
+        source: Box<formcam_program::ProgramError>,
+    },
+    /// `summary.json` could not be written.
+    #[error("summary.json: {source}")]
+    Summary {
+        /// The reason.
+        source: serde_json::Error,
+    },
+}
+
+impl RunError {
+    /// A winding job's error, naming the job file.
+    pub fn wind(path: &std::path::Path, source: formcam_program::ProgramError) -> Self {
+        Self::Wind {
+            path: path.to_path_buf(),
+            source: Box::new(source),
+        }
+    }
 }

@@ -9,7 +9,9 @@
 mod dress;
 mod error;
 mod files;
+mod wind;
 
 pub use dress::{dress, dress_text, is_dress_job};
 pub use error::RunError;
 pub use files::{ResultFile, RunOutput};
+pub use wind::{wind, wind_file, wind_furthest};

@@ -6,12 +6,10 @@
 //! unless the job lists each failed check in `[checks] allow`; then the summary
 //! and the program's header say which were accepted.
 
-use std::path::Path;
-
 use formcam_winding::eye::Violation;
 use serde::{Deserialize, Serialize};
 
-use crate::CliError;
+use crate::ProgramError;
 
 /// A check of a winding program (the name users write in `[checks] allow`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Deserialize, Serialize)]
@@ -127,19 +125,16 @@ pub struct Violated {
     pub detail: String,
 }
 
-/// Refuses the program when a check failed that `allow` does not accept: one
-/// line naming the job, the layer, what failed and how to accept it.
-pub fn enforce(job: &Path, allow: &[Check], violated: &[Violated]) -> Result<(), CliError> {
+/// Refuses the program when a check failed that `allow` does not accept:
+/// the error names the layer, what failed and how to accept it.
+pub fn enforce(allow: &[Check], violated: &[Violated]) -> Result<(), ProgramError> {
     match violated.iter().find(|v| !allow.contains(&v.check)) {
         None => Ok(()),
-        Some(v) => Err(CliError(format!(
-            "{}: checks: {}: the program would {}; no program written (a job that accepts \
-             this gives [checks] allow = [\"{}\"])",
-            job.display(),
-            v.layer,
-            v.detail,
-            v.check.name()
-        ))),
+        Some(v) => Err(ProgramError::Refused {
+            check: v.check,
+            layer: v.layer.clone(),
+            detail: v.detail.clone(),
+        }),
     }
 }
 
@@ -220,14 +215,13 @@ mod tests {
                 detail: "drive axis X beyond its limit".into(),
             },
         ];
-        let job = Path::new("job.toml");
-        let e = enforce(job, &[Check::Slack], &v).unwrap_err().0;
+        let e = enforce(&[Check::Slack], &v).unwrap_err().to_string();
         assert!(
             e.contains("layer 2") && e.contains("allow = [\"limits\"]"),
             "{e}"
         );
-        assert!(enforce(job, &[Check::Limits, Check::Slack], &v).is_ok());
-        assert!(enforce(job, &[], &[]).is_ok());
+        assert!(enforce(&[Check::Limits, Check::Slack], &v).is_ok());
+        assert!(enforce(&[], &[]).is_ok());
         assert_eq!(accepted(&v), [Check::Slack, Check::Limits]);
     }
 }

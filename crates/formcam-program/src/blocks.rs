@@ -1,9 +1,6 @@
-//! The whole winding program: the axes cut into blocks, timed, and written by a
-//! post-processor (`formcam wind JOB -o OUT`).
-
-use std::fmt::Write as _;
-use std::fs;
-use std::path::Path;
+//! The NC blocks of a winding program: each layer's axes cut into blocks
+//! within the tolerances and timed, skip layers' turns, and the whole
+//! program joined from rest to rest with its joins ramped and re-timed.
 
 use formcam_machine::Machine;
 use formcam_machine::Target;
@@ -12,59 +9,49 @@ use formcam_motion::{
     AxisLimits, Deviation, Timing, Tolerance, check_acceleration, check_timing, deltas, fit_blocks,
     global, join_times, pairwise, preliminary_times, ramp_pieces, with_acceleration,
 };
-use formcam_nc::{
-    AxisSpec, Block, Dialect, Feed, ModuloStyle, Program, Template, keep_within_turns, write,
-    write_template,
-};
-use serde::Deserialize;
-use serde_json::json;
+use formcam_nc::{AxisSpec, Block, Feed, Program};
 
-use crate::CliError;
-use crate::checks::{Check, Violated};
+use crate::ProgramError;
+use crate::checks::{Check, Violated, accepted};
+use crate::job::{MotionJob, Times};
 
-/// The `[motion]` table of a job.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MotionJob {
-    /// Tolerance of the linear axes, mm (default 0.05).
-    pub tolerance_mm: Option<f64>,
-    /// Tolerance of the rotary axes, degrees (default 0.05).
-    pub tolerance_deg: Option<f64>,
-    /// Tolerance on the payout point's position, mm (none by default).
-    pub position_tolerance_mm: Option<f64>,
-    /// The controller's least block time, s (default 0.004).
-    pub tau_s: Option<f64>,
-    /// Which block times the program uses: `global` (default) or `pairwise`.
-    pub times: Option<String>,
-    /// Also keep the machine's acceleration limits (`a_max_*` of its axes):
-    /// neighbouring blocks slowed until each velocity change can ramp within
-    /// half of each block (default false).
-    pub acceleration: Option<bool>,
-}
-
-/// The `[post]` table of a job.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct PostJob {
-    /// `sinumerik-840d` (default), `iso`, `linuxcnc`, `marlin-xab` or `cldata`.
-    pub dialect: Option<String>,
-    /// A user post-processor template (TOML), relative to the job's folder.
-    pub template: Option<String>,
-}
-
-/// What the program stage adds: files, summary fields and a line for the console.
-pub struct Built {
-    /// Output files.
-    pub files: Vec<(String, Vec<u8>)>,
-    /// Summary fields.
-    pub summary: serde_json::Map<String, serde_json::Value>,
-    /// A part of the console line.
-    pub line: String,
-    /// The axes over the whole program (`axes.csv` of a multi-layer job).
-    pub program_axes: Vec<u8>,
+/// The whole program, timed: the NC program (before the post), its blocks
+/// as `blocks.csv` lists them, its times and the checks it failed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Assembled {
+    /// The NC program (blocks with inverse-time feeds, header comments).
+    pub program: Program,
+    /// Every block after the first rapid, with its time.
+    pub blocks: Vec<TimedBlock>,
+    /// How many layers the program holds.
+    pub layers: usize,
+    /// The program's time with the chosen block times, s.
+    pub time_s: f64,
+    /// ... with the pairwise block times (the joins alike), s.
+    pub time_pairwise_s: f64,
+    /// ... with the global block times (the joins alike), s.
+    pub time_global_s: f64,
+    /// ... with the preliminary block times (eq. 17) and the moves between
+    /// layers, s.
+    pub time_preliminary_s: f64,
     /// The checks the whole program failed, its layers' and its own (the
-    /// joins' timing): written only when the job accepts them.
+    /// joins' timing): the program is written only when the job accepts them.
     pub violated: Vec<Violated>,
+    /// The failed checks, each once, in [`Check`] order.
+    pub accepted: Vec<Check>,
+}
+
+/// A block of the program as `blocks.csv` lists it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TimedBlock {
+    /// The axes at the block's end, NC units.
+    pub target: Vec<f64>,
+    /// The block's time, s.
+    pub t: f64,
+    /// The layer the block belongs to (or leads into), 1-based.
+    pub layer: usize,
+    /// The block's least time (eq. 17), s.
+    pub t_star: f64,
 }
 
 /// A block of the program before the joins are timed.
@@ -80,14 +67,11 @@ struct Pending {
     rezero: bool,
 }
 
-fn positive(job: &Path, field: &str, v: f64) -> Result<f64, CliError> {
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
+fn positive(field: &'static str, value: f64) -> Result<f64, ProgramError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
     } else {
-        Err(CliError(format!(
-            "{}: {field}: must be a finite number > 0, got {v}",
-            job.display()
-        )))
+        Err(ProgramError::NotPositive { field, value })
     }
 }
 
@@ -101,6 +85,7 @@ pub fn nc(m: &Machine, a: usize, v: f64) -> f64 {
 }
 
 /// The blocks of one layer: its circuits, each cut and timed alike.
+#[derive(Debug, Clone, PartialEq)]
 pub struct LayerBlocks {
     /// A label for comments and `blocks.csv`.
     pub label: String,
@@ -119,17 +104,14 @@ pub struct LayerBlocks {
 
 /// Checks the axes of a layer, cuts one circuit into blocks, times them, and
 /// repeats the circuit `circuits` times (each turned on by the circuit's turn).
-#[allow(clippy::too_many_arguments)]
 pub fn layer_blocks(
-    job: &Path,
     label: &str,
     m: &Machine,
     targets: &[Target],
     track: &AxisTrack,
     motion: &MotionJob,
     circuits: u32,
-) -> Result<LayerBlocks, CliError> {
-    let here = |msg: String| CliError(format!("{}: {msg}", job.display()));
+) -> Result<LayerBlocks, ProgramError> {
     // A program must not drive an axis beyond its limits (unless the job accepts it).
     let mut violated: Vec<Violated> = track
         .issues
@@ -152,20 +134,12 @@ pub fn layer_blocks(
         })
         .collect();
     let w = m.axes.len();
-    let tol_mm = positive(
-        job,
-        "motion.tolerance_mm",
-        motion.tolerance_mm.unwrap_or(0.05),
-    )?;
-    let tol_deg = positive(
-        job,
-        "motion.tolerance_deg",
-        motion.tolerance_deg.unwrap_or(0.05),
-    )?;
-    let tau = positive(job, "motion.tau_s", motion.tau_s.unwrap_or(0.004))?;
+    let tol_mm = positive("motion.tolerance_mm", motion.tolerance_mm.unwrap_or(0.05))?;
+    let tol_deg = positive("motion.tolerance_deg", motion.tolerance_deg.unwrap_or(0.05))?;
+    let tau = positive("motion.tau_s", motion.tau_s.unwrap_or(0.004))?;
     let position = motion
         .position_tolerance_mm
-        .map(|p| positive(job, "motion.position_tolerance_mm", p))
+        .map(|p| positive("motion.position_tolerance_mm", p))
         .transpose()?;
     let tol = Tolerance {
         axes: m
@@ -196,22 +170,16 @@ pub fn layer_blocks(
         w,
         &tol,
         position.map(|_| &deviation as Deviation<'_>),
-    )
-    .map_err(|e| here(format!("motion: {e}")))?;
+    )?;
     let limits = axis_limits(m);
     let d = deltas(&track.values, w, &ends);
-    let limit_err = |e: formcam_motion::MotionError| here(format!("machine: {e}"));
+    let limit_err = ProgramError::AxisLimits;
     let t_star = preliminary_times(&d, &limits, tau).map_err(limit_err)?;
     let pw = pairwise(&d, &t_star, &limits).map_err(limit_err)?;
     let gl = global(&d, &t_star, &limits).map_err(limit_err)?;
-    let chosen: &Timing = match motion.times.as_deref() {
-        None | Some("global") => &gl,
-        Some("pairwise") => &pw,
-        Some(other) => {
-            return Err(here(format!(
-                "motion.times: \"{other}\" is not one of global, pairwise"
-            )));
-        }
+    let chosen: &Timing = match motion.times {
+        Times::Global => &gl,
+        Times::Pairwise => &pw,
     };
     let ramped;
     let chosen: &Timing = if motion.acceleration.unwrap_or(false) {
@@ -296,25 +264,20 @@ pub fn axis_limits(m: &Machine) -> Vec<AxisLimits> {
 /// A move of the spindle alone by `turn_deg` from `from` (a skip layer), timed
 /// by the spindle's velocity limit.
 pub fn skip_blocks(
-    job: &Path,
     label: &str,
     m: &Machine,
     from: &[f64],
     turn_deg: f64,
     tau: f64,
-) -> Result<LayerBlocks, CliError> {
-    let s = m.roles.spindle.ok_or_else(|| {
-        CliError(format!(
-            "{}: {label}: a skip layer turns the spindle, and {} has none",
-            job.display(),
-            m.name
-        ))
+) -> Result<LayerBlocks, ProgramError> {
+    let s = m.roles.spindle.ok_or_else(|| ProgramError::NoSpindle {
+        label: label.to_string(),
+        machine: m.name.clone(),
     })?;
     if !turn_deg.is_finite() {
-        return Err(CliError(format!(
-            "{}: {label}: mandrel_rotation_deg must be a finite number",
-            job.display()
-        )));
+        return Err(ProgramError::SkipTurnNotFinite {
+            label: label.to_string(),
+        });
     }
     let mut target = from.to_vec();
     target[s] += turn_deg;
@@ -331,17 +294,17 @@ pub fn skip_blocks(
     })
 }
 
-/// Writes the program of `layers` (in order) with the post of the job.
-pub fn write_program(
-    job: &Path,
+/// The whole program of `layers` (in order): the moves between layers, the
+/// joins ramped and re-timed from rest to rest, its timing checked. `title`
+/// names the job in the header, `name` the program.
+pub fn assemble(
+    title: &str,
     name: &str,
     m: &Machine,
     layers: &[LayerBlocks],
     motion: &MotionJob,
-    post: &PostJob,
-) -> Result<Built, CliError> {
-    let here = |msg: String| CliError(format!("{}: {msg}", job.display()));
-    let tau = positive(job, "motion.tau_s", motion.tau_s.unwrap_or(0.004))?;
+) -> Result<Assembled, ProgramError> {
+    let tau = positive("motion.tau_s", motion.tau_s.unwrap_or(0.004))?;
     let axes: Vec<AxisSpec> = m
         .axes
         .iter()
@@ -457,13 +420,11 @@ pub fn write_program(
     // the program's start and end, from and to rest) are slowed until every
     // jump holds across it.
     let from = program.blocks.first().map(|b| b.target.clone());
-    let pending_blocks = ramps(m, from.as_deref(), pending_blocks, &limits, tau)
-        .map_err(|e| here(format!("motion: {e}")))?;
+    let pending_blocks = ramps(m, from.as_deref(), pending_blocks, &limits, tau)?;
     let d = program_deltas(m, from.as_deref(), &pending_blocks);
     let t_star: Vec<f64> = pending_blocks.iter().map(|b| b.t_star).collect();
     let cap: Vec<f64> = pending_blocks.iter().map(|b| b.cap).collect();
-    let joined =
-        join_times(&d, &t_star, &cap, &limits).map_err(|e| here(format!("motion: {e}")))?;
+    let joined = join_times(&d, &t_star, &cap, &limits)?;
     let mut program_violated = Vec::new();
     if let Some((b, k, e)) = timing_from_rest(&d, &joined.times, &limits) {
         program_violated.push(Violated {
@@ -477,17 +438,14 @@ pub fn write_program(
         });
     }
     let count = pending_blocks.len();
-    let mut csv = String::from("block,t");
-    for a in &m.axes {
-        let _ = write!(csv, ",{}", a.name);
-    }
-    csv.push_str(",layer,t_star,mu\n");
-    for (n, (p, t)) in pending_blocks.into_iter().zip(&joined.times).enumerate() {
-        let _ = write!(csv, "{},{t}", n + 1);
-        for v in &p.target {
-            let _ = write!(csv, ",{v}");
-        }
-        let _ = writeln!(csv, ",{},{},{}", p.layer, p.t_star, p.t_star / t);
+    let mut timed = Vec::with_capacity(count);
+    for (p, t) in pending_blocks.into_iter().zip(&joined.times) {
+        timed.push(TimedBlock {
+            target: p.target.clone(),
+            t: *t,
+            layer: p.layer,
+            t_star: p.t_star,
+        });
         let mut block = Block::linear(p.target, Feed::InverseTime(*t));
         if let Some(label) = p.comment {
             block = block.with_comment(label);
@@ -498,12 +456,12 @@ pub fn write_program(
     // The joins' share of the program time, the same for every method.
     let joins = joined.total - total[0];
     program.header_comments = vec![
-        format!("formcam: {} on {}", job.display(), m.name),
+        format!("formcam: {} on {}", title, m.name),
         format!(
             "{} layers, {count} blocks, {:.3} s ({} block times; pairwise {:.3} s, global {:.3} s)",
             layers.len(),
             total[0] + joins,
-            motion.times.as_deref().unwrap_or("global"),
+            motion.times.name(),
             total[1] + joins,
             total[2] + joins
         ),
@@ -513,7 +471,7 @@ pub fn write_program(
         .flat_map(|l| l.violated.clone())
         .chain(program_violated)
         .collect();
-    let accepted = crate::checks::accepted(&violated);
+    let accepted = accepted(&violated);
     if !accepted.is_empty() {
         program.header_comments.push(format!(
             "checks accepted as violated ([checks] allow): {}",
@@ -524,83 +482,16 @@ pub fn write_program(
                 .join(", ")
         ));
     }
-    let (program_axes, axis_ranges) = program_axes(m, &program);
-    let mut text = String::with_capacity(count * 64);
-    let ext = match (&post.template, &post.dialect) {
-        (Some(_), Some(_)) => {
-            return Err(here(
-                "post: give either dialect or template, not both".into(),
-            ));
-        }
-        (Some(t), None) => {
-            let dir = job.parent().unwrap_or(Path::new("."));
-            let p = dir.join(t);
-            let src = fs::read_to_string(&p)
-                .map_err(|e| here(format!("post.template: cannot read {}: {e}", p.display())))?;
-            let tpl =
-                Template::from_toml(&src).map_err(|e| CliError(format!("{}: {e}", p.display())))?;
-            // Modulo axes within 100 turns where the template re-zeroes them.
-            let program = match tpl.modulo_style() {
-                Some(style) => {
-                    keep_within_turns(&program, style).map_err(|e| here(format!("post: {e}")))?
-                }
-                None => program,
-            };
-            write_template(&program, &tpl, &mut text)
-                .map_err(|e| CliError(format!("{}: {e}", p.display())))?;
-            tpl.extension().to_string()
-        }
-        (None, d) => {
-            let dialect = Dialect::from_name(d.as_deref().unwrap_or("sinumerik-840d"))
-                .map_err(|e| here(format!("post.dialect: {e}")))?;
-            // Modulo axes within 100 turns: re-zeroed, or modulo with directions.
-            let program = keep_within_turns(&program, ModuloStyle::of(dialect))
-                .map_err(|e| here(format!("post: {e}")))?;
-            write(&program, dialect, &mut text).map_err(|e| here(format!("post: {e}")))?;
-            dialect.extension().to_string()
-        }
-    };
-    let mut summary = serde_json::Map::new();
-    summary.insert("blocks".into(), json!(count));
-    summary.insert("layers".into(), json!(layers.len()));
-    summary.insert("program_time_s".into(), json!(total[0] + joins));
-    summary.insert("program_time_pairwise_s".into(), json!(total[1] + joins));
-    summary.insert("program_time_global_s".into(), json!(total[2] + joins));
-    summary.insert(
-        "program_time_preliminary_s".into(),
-        json!(total[3] + transitions),
-    );
-    summary.insert("program_file".into(), json!(format!("program.{ext}")));
-    summary.insert("axis_ranges".into(), axis_ranges);
-    summary.insert(
-        "checks_accepted".into(),
-        json!(accepted.iter().map(|c| c.name()).collect::<Vec<_>>()),
-    );
-    summary.insert(
-        "checks_violated".into(),
-        json!(
-            violated
-                .iter()
-                .map(|v| json!({ "check": v.check.name(), "layer": v.layer, "detail": v.detail }))
-                .collect::<Vec<_>>()
-        ),
-    );
-    let line = format!(
-        "; {} layers, {count} blocks, {:.2} s (pairwise {:.2} s, global {:.2} s) -> program.{ext}",
-        layers.len(),
-        total[0] + joins,
-        total[1] + joins,
-        total[2] + joins
-    );
-    Ok(Built {
-        files: vec![
-            (format!("program.{ext}"), text.into_bytes()),
-            ("blocks.csv".to_string(), csv.into_bytes()),
-        ],
-        summary,
-        line,
-        program_axes,
+    Ok(Assembled {
+        program,
+        blocks: timed,
+        layers: layers.len(),
+        time_s: total[0] + joins,
+        time_pairwise_s: total[1] + joins,
+        time_global_s: total[2] + joins,
+        time_preliminary_s: total[3] + transitions,
         violated,
+        accepted,
     })
 }
 
@@ -702,47 +593,4 @@ fn timing_from_rest(
     let mut t = times.to_vec();
     t.push(1.0);
     check_timing(&d, &t, limits).first().copied()
-}
-
-/// The axes over the whole program (`t` in s since its start, then each axis in
-/// NC units, at its start and at every block's end) and their ranges over every
-/// block as summary JSON.
-fn program_axes(m: &Machine, program: &Program) -> (Vec<u8>, serde_json::Value) {
-    let mut csv = String::with_capacity(program.blocks.len() * 16 * (m.axes.len() + 1));
-    csv.push('t');
-    for a in &m.axes {
-        let _ = write!(csv, ",{}", a.name);
-    }
-    csv.push('\n');
-    let mut lo = vec![f64::INFINITY; m.axes.len()];
-    let mut hi = vec![f64::NEG_INFINITY; m.axes.len()];
-    let mut t = 0.0;
-    for b in &program.blocks {
-        if let Feed::InverseTime(dt) = b.feed {
-            t += dt;
-        }
-        let _ = write!(csv, "{t}");
-        for (a, v) in b.target.iter().enumerate() {
-            let _ = write!(csv, ",{v}");
-            if a < lo.len() {
-                lo[a] = lo[a].min(*v);
-                hi[a] = hi[a].max(*v);
-            }
-        }
-        csv.push('\n');
-    }
-    let ranges = m
-        .axes
-        .iter()
-        .enumerate()
-        .map(|(a, ax)| {
-            json!({
-                "axis": ax.name,
-                "min": lo[a],
-                "max": hi[a],
-                "unit": if ax.is_rotary() { "deg" } else { "mm" },
-            })
-        })
-        .collect();
-    (csv.into_bytes(), serde_json::Value::Array(ranges))
 }

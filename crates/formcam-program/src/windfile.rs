@@ -21,66 +21,102 @@
 //! not used: the delivery head's rotation follows from the kinematics, the feeds
 //! from the machine's limits.
 
-use std::fs;
-use std::path::Path;
-
+use formcam_machine::ik::IkMethod;
+use formcam_machine::shipped::shipped;
 use formcam_winding::job::{EyeJob, MandrelSpec, WindingSpec};
 use serde_json::{Map, Value};
 
-use crate::CliError;
+use crate::ProgramError;
+use crate::checks::Check;
+use crate::job::{JobMachine, Layers, MachineSource, MotionJob, Post, WindImport, WindJob};
 
-/// The machine `.wind` jobs run on (its eye 250 mm from the axis; moved to the
-/// job's eye radius by [`machine_text`]).
-pub const MACHINE: &str = include_str!("../../../machines/winder-xab.toml");
+/// The shipped machine `.wind` jobs run on (its eye 250 mm from the axis;
+/// moved to the job's eye radius by [`machine_text`]).
+pub const MACHINE: &str = "winder-xab";
 /// The latest version of the specification formcam reads: `(major, minor)`.
 pub const SPEC_VERSION: (u32, u32) = (1, 3);
 /// The eye's default clearance over the mandrel, mm: clear of the eye's own
 /// solid (a roller of 12 mm radius).
 pub const EYE_CLEARANCE_MM: f64 = 25.0;
 
-/// The line of the built-in machine that places the eye's arm.
+/// The line of the shipped machine that places the eye's arm.
 const ARM_ORIGIN: &str = "origin = { xyz = [0.0, 250.0, 1000.0] }";
 
 /// The X/A/B winder with its eye `eye_radius` mm from the spindle axis.
-pub fn machine_text(eye_radius: f64) -> Result<String, CliError> {
-    if MACHINE.matches(ARM_ORIGIN).count() != 1 {
-        return Err(CliError(
-            "machines/winder-xab.toml (built in): the eye's arm is not where the .wind reader \
-             expects it"
-                .into(),
-        ));
+pub fn machine_text(eye_radius: f64) -> Result<String, ProgramError> {
+    let text = shipped(MACHINE).map_or("", |s| s.text);
+    if text.matches(ARM_ORIGIN).count() != 1 {
+        return Err(ProgramError::WindFile(format!(
+            "{MACHINE} (shipped): the eye's arm is not where the .wind reader expects it"
+        )));
     }
-    Ok(MACHINE.replace(
+    Ok(text.replace(
         ARM_ORIGIN,
         &format!("origin = {{ xyz = [0.0, {eye_radius}, 1000.0] }}"),
     ))
 }
 
-/// The parts of a formcam job a `.wind` file gives.
-#[derive(Debug)]
-pub struct Imported {
-    /// The mandrel.
-    pub mandrel: MandrelSpec,
-    /// The layers.
-    pub layers: Vec<WindingSpec>,
-    /// The eye: parallel to the axis at [`Imported::eye_radius`].
-    pub eye: EyeJob,
-    /// The eye's distance from the spindle axis, mm.
-    pub eye_radius: f64,
-    /// The eye's clearance over the mandrel's largest radius, mm.
-    pub eye_clearance: f64,
-    /// The document's `schemaVersion` (1.0 when absent).
-    pub schema_version: String,
-    /// Members ignored and other remarks, one line each.
-    pub warnings: Vec<String>,
+impl WindJob {
+    /// A Cyclone/FiberPath `.wind` document as a job on the shipped X/A/B
+    /// winder with its eye `eye_clearance` mm over the mandrel, written for
+    /// Marlin X/A/B.
+    ///
+    /// The format knows no eye: FiberPath's machines lay the band where `X`
+    /// says and take up a little slack at the turn-arounds with their
+    /// tensioner, so the eye's `slack` check is accepted (and reported);
+    /// `allow` accepts more. Errors name the member.
+    pub fn from_wind(
+        text: &str,
+        eye_clearance: f64,
+        allow: &[Check],
+    ) -> Result<WindJob, ProgramError> {
+        let imported = parse(text, eye_clearance).map_err(ProgramError::WindFile)?;
+        let machine = formcam_machine::Machine::from_toml(&machine_text(imported.eye_radius)?)
+            .map_err(|e| ProgramError::machine(MACHINE, e))?;
+        let mut checks = vec![Check::Slack];
+        checks.extend(allow.iter().filter(|c| **c != Check::Slack));
+        Ok(WindJob {
+            title: "job.wind".into(),
+            program_name: "job".into(),
+            base_dir: std::path::PathBuf::new(),
+            mandrel: imported.mandrel,
+            layers: Layers::Multi(imported.layers),
+            eye: Some(imported.eye),
+            machine: Some(JobMachine {
+                machine,
+                source: MachineSource::Shipped(MACHINE.into()),
+                ik: IkMethod::Auto,
+            }),
+            motion: MotionJob::default(),
+            post: Some(Post::Dialect(formcam_nc::Dialect::MarlinXab)),
+            allow: checks,
+            warnings: imported.warnings,
+            wind_file: Some(WindImport {
+                schema_version: imported.schema_version,
+                eye_radius_mm: imported.eye_radius,
+                eye_clearance_mm: imported.eye_clearance,
+            }),
+        })
+    }
 }
 
-/// Reads a `.wind` file with the eye `eye_clearance` mm over the mandrel;
-/// errors name the file and the member.
-pub fn read(path: &Path, eye_clearance: f64) -> Result<Imported, CliError> {
-    let at = |msg: String| CliError(format!("{}: {msg}", path.display()));
-    let text = fs::read_to_string(path).map_err(|e| at(format!("cannot read: {e}")))?;
-    parse(&text, eye_clearance).map_err(at)
+/// The parts of a formcam job a `.wind` file gives.
+#[derive(Debug)]
+struct Imported {
+    /// The mandrel.
+    mandrel: MandrelSpec,
+    /// The layers.
+    layers: Vec<WindingSpec>,
+    /// The eye: parallel to the axis at [`Imported::eye_radius`].
+    eye: EyeJob,
+    /// The eye's distance from the spindle axis, mm.
+    eye_radius: f64,
+    /// The eye's clearance over the mandrel's largest radius, mm.
+    eye_clearance: f64,
+    /// The document's `schemaVersion` (1.0 when absent).
+    schema_version: String,
+    /// Members ignored and other remarks, one line each.
+    warnings: Vec<String>,
 }
 
 /// One JSON object being read: the members asked for are remembered, so that
@@ -307,7 +343,7 @@ struct Helical {
 }
 
 /// Reads the text of a `.wind` document; errors name the member.
-pub fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
+fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
     if !(eye_clearance.is_finite() && eye_clearance > 0.0) {
         return Err(format!(
             "--eye-clearance: must be a finite number > 0 mm, got {eye_clearance}"
@@ -550,7 +586,7 @@ mod tests {
     fn the_built_in_winder_carries_its_eye_at_the_radius_asked() {
         for radius in [42.5, 250.0, 600.0] {
             let text = machine_text(radius).unwrap();
-            let m = crate::machine::parse(Path::new("xab.toml"), &text).unwrap();
+            let m = formcam_machine::Machine::from_toml(&text).unwrap();
             let q = m.home();
             let eye = m.key_points(&q)[m.roles.payout];
             let local = m.poses(&q)[m.roles.mandrel].inverse_transform_point(&eye);

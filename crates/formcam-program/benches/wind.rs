@@ -1,0 +1,80 @@
+//! The winding pipeline of whole jobs: a single-layer tube on the shipped
+//! 2-axis winder, and the same tube wound in four layers (hoop, helical,
+//! hoop, helical), whose layers' eye, axes and blocks run in parallel.
+
+#![allow(clippy::expect_used, missing_docs)]
+
+use std::hint::black_box;
+use std::path::Path;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use formcam_program::{WindJob, plan_program, write_program};
+
+const TUBE: &str = r#"
+[mandrel]
+kind = "cylinder"
+radius = 60.0
+length = 800.0
+
+[winding]
+mu = 0.0
+winding_angle_deg = 50.0
+band_width = 8.0
+band_thickness = 0.3
+dwell_min_deg = 360.0
+
+[eye]
+mode = "axis-parallel"
+radius = 250.0
+clearance = 15.0
+l_max = 1000.0
+
+[machine]
+name = "winder-2axis"
+
+[post]
+dialect = "marlin-xab"
+
+[checks]
+allow = ["slack", "clearance", "l_max", "cyclicity", "reverse-rotation", "limits", "unreachable", "timing"]
+"#;
+
+fn layers() -> String {
+    let hoop = "[[layer]]\nkind = \"hoop\"\nband_width = 8.0\nband_thickness = 0.3\n";
+    let helical = "[[layer]]\nmu = 0.0\nwinding_angle_deg = 50.0\nband_width = 8.0\n\
+                   band_thickness = 0.3\ndwell_min_deg = 360.0\n";
+    let base = TUBE.replace(
+        "[winding]\nmu = 0.0\nwinding_angle_deg = 50.0\nband_width = 8.0\nband_thickness = 0.3\n\
+         dwell_min_deg = 360.0\n",
+        "",
+    );
+    format!("{base}{hoop}{helical}{hoop}{helical}")
+}
+
+fn benches(c: &mut Criterion) {
+    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let single = WindJob::from_toml(TUBE, here).expect("job");
+    let multi = WindJob::from_toml(&layers(), here).expect("job");
+    let mut g = c.benchmark_group("wind");
+    g.sample_size(10);
+    g.bench_function("tube, one layer: plan and post", |b| {
+        b.iter(|| {
+            let p = plan_program(black_box(&single)).expect("plan");
+            let mut text = Vec::new();
+            write_program(&p, &mut text).expect("post");
+            text.len()
+        });
+    });
+    g.bench_function("tube, four layers: plan and post", |b| {
+        b.iter(|| {
+            let p = plan_program(black_box(&multi)).expect("plan");
+            let mut text = Vec::new();
+            write_program(&p, &mut text).expect("post");
+            text.len()
+        });
+    });
+    g.finish();
+}
+
+criterion_group!(wind, benches);
+criterion_main!(wind);

@@ -1,0 +1,646 @@
+//! Winding runs: a job's result files — the program, `blocks.csv`,
+//! `axes.csv`, the band, eye and path CSVs, each layer's `layer-NN/`
+//! outputs, `summary.json` and the plots — and the line that says what was
+//! done. A single-layer job writes its layer's outputs as its own; a
+//! multi-layer job (and a `.wind` document) writes them per layer.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Instant;
+
+use formcam_machine::Machine;
+use formcam_machine::ik::AxisTrack;
+use formcam_program::{
+    Assembled, Check, MachineSource, ProgramError, Stage, WindJob, Wound, WoundLayer, WoundProgram,
+    nc, plan_until, write_program,
+};
+use formcam_winding::Layer;
+use formcam_winding::eye::EyeTrajectory;
+use serde_json::{Map, Value, json};
+
+use crate::{ResultFile, RunError, RunOutput};
+
+/// `formcam wind [path|eye|axes] JOB -o OUT`: the job at `job` run up to
+/// `stage`; `out` is only named in the line.
+pub fn wind(job: &Path, out: &Path, stage: Stage) -> Result<RunOutput, RunError> {
+    let t0 = Instant::now();
+    let wj = read_job(job)?;
+    run(job, out, &wj, stage, t0)
+}
+
+/// The job at `job` run as far as its tables reach (the demo's rule, see
+/// [`WindJob::furthest_stage`]).
+pub fn wind_furthest(job: &Path, out: &Path) -> Result<RunOutput, RunError> {
+    let t0 = Instant::now();
+    let wj = read_job(job)?;
+    run(job, out, &wj, wj.furthest_stage(), t0)
+}
+
+/// `formcam wind JOB.wind -o OUT`: a Cyclone/FiberPath `.wind` job on the
+/// shipped X/A/B winder with its eye `eye_clearance` mm over the mandrel,
+/// written for Marlin X/A/B; `allow` accepts failed checks (`slack` always).
+pub fn wind_file(
+    path: &Path,
+    out: &Path,
+    eye_clearance: f64,
+    allow: &[Check],
+) -> Result<RunOutput, RunError> {
+    let t0 = Instant::now();
+    let text = std::fs::read_to_string(path).map_err(|source| RunError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let wj = WindJob::from_wind(&text, eye_clearance, allow)
+        .map_err(|e| RunError::wind(path, e))?
+        .named(path);
+    let mut output = run(path, out, &wj, Stage::Program, t0)?;
+    if let Some(w) = &wj.wind_file {
+        let _ = write!(
+            output.line,
+            "; eye {:.1} mm from the axis ({:.1} mm over the mandrel)",
+            w.eye_radius_mm, w.eye_clearance_mm
+        );
+    }
+    Ok(output)
+}
+
+/// The job at `path`, read.
+fn read_job(path: &Path) -> Result<WindJob, RunError> {
+    let text = std::fs::read_to_string(path).map_err(|source| RunError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let base = path.parent().unwrap_or(Path::new(""));
+    Ok(WindJob::from_toml(&text, base)
+        .map_err(|e| RunError::wind(path, e))?
+        .named(path))
+}
+
+/// Plans `job` up to `stage` and lays out its files.
+fn run(
+    path: &Path,
+    out: &Path,
+    job: &WindJob,
+    stage: Stage,
+    t0: Instant,
+) -> Result<RunOutput, RunError> {
+    let at = |e: ProgramError| RunError::wind(path, e);
+    let wound = plan_until(job, stage).map_err(at)?;
+    let program = match &wound.program {
+        Some(p) => {
+            let mut text = Vec::new();
+            write_program(&wound, &mut text).map_err(at)?;
+            Some((p, text))
+        }
+        None => None,
+    };
+    let mut output = if job.is_layered() {
+        layered(job, &wound, program)?
+    } else {
+        single(path, job, &wound, program)?
+    };
+    let _ = write!(
+        output.line,
+        ", {:.1} ms -> {}",
+        t0.elapsed().as_secs_f64() * 1e3,
+        out.display()
+    );
+    if let Some(l) = wound.layers.first().and_then(WoundLayer::wound)
+        && !job.is_layered()
+    {
+        for w in &l.layer.warnings {
+            let _ = write!(output.line, "\n  warning: {w}");
+        }
+    }
+    output.warnings = wound
+        .warnings
+        .iter()
+        .map(|w| format!("{}: {w}", path.display()))
+        .collect();
+    Ok(output)
+}
+
+/// A single-layer job: the layer's outputs are the job's.
+fn single(
+    path: &Path,
+    job: &WindJob,
+    wound: &WoundProgram,
+    program: Option<(&Assembled, Vec<u8>)>,
+) -> Result<RunOutput, RunError> {
+    let Some(l) = wound.layers.first().and_then(WoundLayer::wound) else {
+        return Ok(RunOutput::default());
+    };
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let layer = &l.layer;
+    let mut summary = layer_summary(&job.title, l.mandrel.kind(), layer);
+    if let Some(w) = summary.get_mut("warnings").and_then(Value::as_array_mut) {
+        w.extend(wound.warnings.iter().map(|s| json!(s)));
+    }
+    let title = format!("{name}: {} mandrel, one pass", l.mandrel.kind());
+    let mut files = vec![
+        ResultFile::new("path.csv", path_csv(layer)),
+        ResultFile::new(
+            "path.svg",
+            formcam_plot::layer_svg(&title, &l.mandrel, layer)?,
+        ),
+    ];
+    let mut more = String::new();
+    if let Some(t) = &l.eye {
+        add_eye_summary(&mut summary, t);
+        files.push(ResultFile::new("eye.csv", eye_csv(t)));
+        files.push(ResultFile::new(
+            "eye.svg",
+            formcam_plot::eye_svg(&format!("{name}: payout eye over one circuit"), t)?,
+        ));
+        more = eye_line(t);
+    }
+    if let (Some(m), Some(track), Some(jm)) = (&wound.machine, &l.track, &job.machine) {
+        files.push(ResultFile::new("axes.csv", axes_csv(m, l, track)));
+        if !m.roles.band_path.is_empty() {
+            files.push(ResultFile::new("band.csv", band_csv(m, l)));
+        }
+        add_axes_summary(&mut summary, m, &jm.source, track, l.passed.last());
+        let mut program_line = String::new();
+        if let Some((p, text)) = program {
+            let (pf, fields, line) = program_files(m, p, wound, text);
+            files.extend(pf);
+            if let Some(obj) = summary.as_object_mut() {
+                obj.extend(fields);
+            }
+            program_line = line;
+        }
+        more.push_str(&axes_line(m, track));
+        more.push_str(&program_line);
+    }
+    files.push(ResultFile::new("summary.json", pretty(&summary)?));
+    let line = format!(
+        "{}: {} path, mu {:.5}, alpha at equator {:.3} deg, {} circuits (pattern {} skip {}), dwell \
+         {:.2} deg, fibre {:.1} m{more}",
+        job.title,
+        json_name(&layer.pass.method),
+        layer.pass.mu.unwrap_or(layer.pass.mu_max_abs),
+        layer.report.alpha_equator_rad.to_degrees(),
+        layer.pattern.circuits,
+        layer.pattern.pattern_number,
+        layer.pattern.skip_index,
+        layer.report.dwell_deg,
+        layer.report.fibre_length_mm / 1000.0,
+    );
+    Ok(RunOutput {
+        files,
+        line,
+        ..RunOutput::default()
+    })
+}
+
+/// A multi-layer job: each layer's outputs in `layer-NN/`, the program's
+/// axes over time in `axes.csv`.
+fn layered(
+    job: &WindJob,
+    wound: &WoundProgram,
+    program: Option<(&Assembled, Vec<u8>)>,
+) -> Result<RunOutput, RunError> {
+    let (Some(m), Some(jm), Some((p, text))) = (&wound.machine, &job.machine, program) else {
+        return Ok(RunOutput::default());
+    };
+    let mut files = Vec::new();
+    let mut per_layer = Vec::with_capacity(wound.layers.len());
+    for (i, (l, b)) in wound.layers.iter().zip(&wound.blocks).enumerate() {
+        let Some(w) = l.wound() else {
+            per_layer
+                .push(json!({ "layer": i + 1, "kind": l.kind, "blocks": 1, "time_s": b.times[0] }));
+            continue;
+        };
+        let dir = format!("layer-{:02}", i + 1);
+        let title = format!("{}: {} mandrel, one pass", l.label, w.mandrel.kind());
+        files.push(ResultFile::new(
+            format!("{dir}/path.csv"),
+            path_csv(&w.layer),
+        ));
+        files.push(ResultFile::new(
+            format!("{dir}/path.svg"),
+            formcam_plot::layer_svg(&title, &w.mandrel, &w.layer)?,
+        ));
+        if let Some(t) = &w.eye {
+            files.push(ResultFile::new(format!("{dir}/eye.csv"), eye_csv(t)));
+            files.push(ResultFile::new(
+                format!("{dir}/eye.svg"),
+                formcam_plot::eye_svg(&format!("{}: payout eye over one circuit", l.label), t)?,
+            ));
+        }
+        let (limits_ok, residual) = match &w.track {
+            Some(track) => {
+                files.push(ResultFile::new(
+                    format!("{dir}/axes.csv"),
+                    axes_csv(m, w, track),
+                ));
+                (track.limits_ok(), track.max_residual_mm())
+            }
+            None => (true, 0.0),
+        };
+        if !m.roles.band_path.is_empty() {
+            files.push(ResultFile::new(format!("{dir}/band.csv"), band_csv(m, w)));
+        }
+        per_layer.push(json!({
+            "layer": i + 1,
+            "kind": l.kind,
+            "mandrel_growth_mm": w.grown,
+            "alpha_equator_deg": w.layer.report.alpha_equator_rad.to_degrees(),
+            "circuits": w.layer.pattern.circuits,
+            "blocks": b.blocks.len(),
+            "time_s": b.times[0],
+            "thickness_mm": w.thickness,
+            "fibre_length_mm": w.layer.report.fibre_length_mm,
+            "one_way": l.one_way,
+            "limits_ok": limits_ok,
+            "max_ik_residual_mm": residual,
+        }));
+    }
+    let fibre = wound.fibre_length_mm();
+    let mut summary = Map::new();
+    summary.insert("job".into(), json!(job.title));
+    summary.insert("machine".into(), json!(m.name));
+    insert_source(&mut summary, &jm.source);
+    summary.insert(
+        "axes".into(),
+        json!(m.axes.iter().map(|a| a.name.clone()).collect::<Vec<_>>()),
+    );
+    summary.insert("fibre_length_mm".into(), json!(fibre));
+    summary.insert("per_layer".into(), json!(per_layer));
+    summary.insert("warnings".into(), json!(wound.warnings));
+    if let Some(w) = &job.wind_file {
+        summary.insert("schema_version".into(), json!(w.schema_version));
+        summary.insert("eye_radius_mm".into(), json!(w.eye_radius_mm));
+        summary.insert("eye_clearance_mm".into(), json!(w.eye_clearance_mm));
+    }
+    let (pf, fields, program_line) = program_files(m, p, wound, text);
+    summary.extend(fields);
+    files.extend(pf);
+    let (axes, _) = program_axes(m, p);
+    files.push(ResultFile::new("axes.csv", axes));
+    files.push(ResultFile::new(
+        "summary.json",
+        pretty(&Value::Object(summary))?,
+    ));
+    let line = format!(
+        "{}: {} on {}, fibre {:.1} m{program_line}",
+        job.title,
+        wound
+            .layers
+            .iter()
+            .map(|l| l.kind.as_str())
+            .collect::<Vec<_>>()
+            .join(" + "),
+        m.name,
+        fibre / 1000.0,
+    );
+    Ok(RunOutput {
+        files,
+        line,
+        ..RunOutput::default()
+    })
+}
+
+/// The program's files (`program.<ext>`, `blocks.csv`), its summary fields
+/// and its part of the line.
+fn program_files(
+    m: &Machine,
+    p: &Assembled,
+    wound: &WoundProgram,
+    text: Vec<u8>,
+) -> (Vec<ResultFile>, Map<String, Value>, String) {
+    let ext = wound.post.extension();
+    let count = p.blocks.len();
+    let (_, axis_ranges) = program_axes(m, p);
+    let mut summary = Map::new();
+    summary.insert("blocks".into(), json!(count));
+    summary.insert("layers".into(), json!(p.layers));
+    summary.insert("program_time_s".into(), json!(p.time_s));
+    summary.insert("program_time_pairwise_s".into(), json!(p.time_pairwise_s));
+    summary.insert("program_time_global_s".into(), json!(p.time_global_s));
+    summary.insert(
+        "program_time_preliminary_s".into(),
+        json!(p.time_preliminary_s),
+    );
+    summary.insert("program_file".into(), json!(format!("program.{ext}")));
+    summary.insert("axis_ranges".into(), axis_ranges);
+    summary.insert(
+        "checks_accepted".into(),
+        json!(p.accepted.iter().map(|c| c.name()).collect::<Vec<_>>()),
+    );
+    summary.insert(
+        "checks_violated".into(),
+        json!(
+            p.violated
+                .iter()
+                .map(|v| json!({ "check": v.check.name(), "layer": v.layer, "detail": v.detail }))
+                .collect::<Vec<_>>()
+        ),
+    );
+    let line = format!(
+        "; {} layers, {count} blocks, {:.2} s (pairwise {:.2} s, global {:.2} s) -> program.{ext}",
+        p.layers, p.time_s, p.time_pairwise_s, p.time_global_s
+    );
+    let files = vec![
+        ResultFile::new(format!("program.{ext}"), text),
+        ResultFile::new("blocks.csv", blocks_csv(m, p)),
+    ];
+    (files, summary, line)
+}
+
+/// How the summary records the machine: its shipped name or its file as the
+/// job wrote it.
+fn insert_source(summary: &mut Map<String, Value>, source: &MachineSource) {
+    match source {
+        MachineSource::Shipped(n) => summary.insert("machine_shipped".into(), json!(n)),
+        MachineSource::File(f) => summary.insert("machine_file".into(), json!(f)),
+    };
+}
+
+fn pretty(v: &Value) -> Result<Vec<u8>, RunError> {
+    serde_json::to_vec_pretty(v).map_err(|source| RunError::Summary { source })
+}
+
+/// A serialisable kind's name (`geodesic`).
+fn json_name<T: serde::Serialize>(v: &T) -> String {
+    serde_json::to_value(v)
+        .ok()
+        .and_then(|v| v.as_str().map(String::from))
+        .unwrap_or_default()
+}
+
+fn path_csv(layer: &Layer) -> Vec<u8> {
+    let mut s = String::with_capacity(layer.points.len() * 120);
+    s.push_str("s,z,r,v,alpha,c,mu,alpha_deg,thickness\n");
+    for (p, t) in layer.points.iter().zip(&layer.thickness) {
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{},{},{},{}",
+            p.s,
+            p.z,
+            p.r,
+            p.v,
+            p.alpha,
+            p.c,
+            p.mu,
+            p.alpha.to_degrees(),
+            t
+        );
+    }
+    s.into_bytes()
+}
+
+fn layer_summary(job: &str, kind: &str, layer: &Layer) -> Value {
+    let mu = layer.pass.mu.unwrap_or(layer.pass.mu_max_abs);
+    json!({
+        "job": job,
+        "mandrel": kind,
+        "method": layer.pass.method,
+        "mu": mu,
+        "mu_max_abs": layer.pass.mu_max_abs,
+        "turn_angle_pass_rad": layer.report.turn_angle_pass_rad,
+        "turn_angle_circuit_rad": layer.report.turn_angle_circuit_rad,
+        "alpha_equator_rad": layer.report.alpha_equator_rad,
+        "circuits": layer.pattern.circuits,
+        "pattern_number": layer.pattern.pattern_number,
+        "skip_index": layer.pattern.skip_index,
+        "dwell_deg": layer.report.dwell_deg,
+        "fibre_length_mm": layer.report.fibre_length_mm,
+        "pass": layer.pass,
+        "pattern": layer.pattern,
+        "report": layer.report,
+        "warnings": layer.warnings,
+    })
+}
+
+fn eye_line(t: &EyeTrajectory) -> String {
+    format!(
+        "; eye {}: u in [{:.4}, {:.4}], rms {:.4}, constraints {}",
+        json_name(&t.mode),
+        t.stats.u_min,
+        t.stats.u_max,
+        t.stats.u_rms_dev,
+        if t.constraints_ok { "ok" } else { "VIOLATED" }
+    )
+}
+
+fn axes_line(m: &Machine, track: &AxisTrack) -> String {
+    let issues = if track.issues.is_empty() {
+        String::new()
+    } else {
+        format!(
+            ", issues: {}",
+            track
+                .issues
+                .iter()
+                .map(|i| format!("{} {}", i.kind, i.axis.as_deref().unwrap_or("")))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    };
+    format!(
+        "; axes {} on {} ({}): limits {}, IK residual {:.2e} mm{issues}",
+        m.axes
+            .iter()
+            .map(|a| a.name.as_str())
+            .collect::<Vec<_>>()
+            .join(","),
+        m.name,
+        if track.closed_form {
+            "closed form"
+        } else {
+            "solver"
+        },
+        if track.limits_ok() { "ok" } else { "VIOLATED" },
+        track.max_residual_mm(),
+    )
+}
+
+fn add_eye_summary(summary: &mut Value, t: &EyeTrajectory) {
+    if let Some(obj) = summary.as_object_mut() {
+        obj.insert("eye_mode".into(), json!(t.mode));
+        obj.insert("u_min".into(), json!(t.stats.u_min));
+        obj.insert("u_max".into(), json!(t.stats.u_max));
+        obj.insert("u_rms_dev".into(), json!(t.stats.u_rms_dev));
+        obj.insert("constraints_ok".into(), json!(t.constraints_ok));
+        obj.insert("violations".into(), json!(t.violations));
+        obj.insert("eye".into(), json!(t));
+    }
+}
+
+fn axes_csv(m: &Machine, w: &Wound, track: &AxisTrack) -> Vec<u8> {
+    let mut s = String::with_capacity(w.targets.len() * 16 * (m.axes.len() + 1));
+    s.push('x');
+    for a in &m.axes {
+        let _ = write!(s, ",{}", a.name);
+    }
+    s.push('\n');
+    for (t, q) in w.targets.iter().zip(track.rows()) {
+        let _ = write!(s, "{}", t.x);
+        for (a, v) in q.iter().enumerate() {
+            let _ = write!(s, ",{}", nc(m, a, *v));
+        }
+        s.push('\n');
+    }
+    s.into_bytes()
+}
+
+fn band_csv(m: &Machine, w: &Wound) -> Vec<u8> {
+    let mut s = String::from("x");
+    for &k in &m.roles.band_path {
+        let _ = write!(s, ",{}", m.points[k].name);
+    }
+    s.push('\n');
+    for (t, row) in w.targets.iter().zip(&w.passed) {
+        let _ = write!(s, "{}", t.x);
+        for v in row {
+            let _ = write!(s, ",{v}");
+        }
+        s.push('\n');
+    }
+    s.into_bytes()
+}
+
+fn add_axes_summary(
+    summary: &mut Value,
+    m: &Machine,
+    source: &MachineSource,
+    t: &AxisTrack,
+    passed: Option<&Vec<f64>>,
+) {
+    let issues: Vec<Value> = t
+        .issues
+        .iter()
+        .map(|i| {
+            json!({
+                "kind": i.kind,
+                "axis": i.axis,
+                "x": i.x,
+                "count": i.count,
+                "worst": i.worst,
+            })
+        })
+        .collect();
+    let range: Vec<Value> = m
+        .axes
+        .iter()
+        .enumerate()
+        .map(|(a, ax)| {
+            let lo = t.rows().map(|q| nc(m, a, q[a])).fold(f64::INFINITY, f64::min);
+            let hi = t.rows().map(|q| nc(m, a, q[a])).fold(f64::NEG_INFINITY, f64::max);
+            json!({ "axis": ax.name, "min": lo, "max": hi, "unit": if ax.is_rotary() { "deg" } else { "mm" } })
+        })
+        .collect();
+    if let Some(obj) = summary.as_object_mut() {
+        obj.insert("machine".into(), json!(m.name));
+        insert_source(obj, source);
+        obj.insert(
+            "axes".into(),
+            json!(m.axes.iter().map(|a| a.name.clone()).collect::<Vec<_>>()),
+        );
+        obj.insert("limits_ok".into(), json!(t.limits_ok()));
+        obj.insert("max_ik_residual_mm".into(), json!(t.max_residual_mm()));
+        obj.insert(
+            "max_ik_orientation_residual".into(),
+            json!(t.residual_orientation.iter().copied().fold(0.0, f64::max)),
+        );
+        obj.insert(
+            "ik_method".into(),
+            json!(if t.closed_form {
+                "closed-form"
+            } else {
+                "solver"
+            }),
+        );
+        obj.insert("ik_issues".into(), json!(issues));
+        obj.insert("axis_ranges".into(), json!(range));
+        if let Some(p) = passed {
+            let names: Map<String, Value> = m
+                .roles
+                .band_path
+                .iter()
+                .zip(p)
+                .map(|(&k, v)| (m.points[k].name.clone(), json!(v)))
+                .collect();
+            obj.insert("band_passed_per_circuit_mm".into(), json!(names));
+        }
+    }
+}
+
+fn eye_csv(t: &EyeTrajectory) -> Vec<u8> {
+    let mut s = String::with_capacity(t.points.len() * 200);
+    s.push_str("x,z,r,v,alpha,l,eye_z,eye_r,eye_v,lambda,u,margin\n");
+    for p in &t.points {
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{},{},{},{},{},{},{}",
+            p.x, p.z, p.r, p.v, p.alpha, p.l, p.eye_z, p.eye_r, p.eye_v, p.lambda, p.u, p.margin
+        );
+    }
+    s.into_bytes()
+}
+
+/// `blocks.csv`: every block of the program with its time, the axes at its
+/// end (NC units), its layer, least time and `mu`.
+fn blocks_csv(m: &Machine, p: &Assembled) -> Vec<u8> {
+    let mut csv = String::from("block,t");
+    for a in &m.axes {
+        let _ = write!(csv, ",{}", a.name);
+    }
+    csv.push_str(",layer,t_star,mu\n");
+    for (n, b) in p.blocks.iter().enumerate() {
+        let _ = write!(csv, "{},{}", n + 1, b.t);
+        for v in &b.target {
+            let _ = write!(csv, ",{v}");
+        }
+        let _ = writeln!(csv, ",{},{},{}", b.layer, b.t_star, b.t_star / b.t);
+    }
+    csv.into_bytes()
+}
+
+/// The axes over the whole program (`t` in s since its start, then each axis in
+/// NC units, at its start and at every block's end) and their ranges over every
+/// block as summary JSON.
+fn program_axes(m: &Machine, p: &Assembled) -> (Vec<u8>, Value) {
+    let program = &p.program;
+    let mut csv = String::with_capacity(program.blocks.len() * 16 * (m.axes.len() + 1));
+    csv.push('t');
+    for a in &m.axes {
+        let _ = write!(csv, ",{}", a.name);
+    }
+    csv.push('\n');
+    let mut lo = vec![f64::INFINITY; m.axes.len()];
+    let mut hi = vec![f64::NEG_INFINITY; m.axes.len()];
+    let mut t = 0.0;
+    for b in &program.blocks {
+        if let formcam_nc::Feed::InverseTime(dt) = b.feed {
+            t += dt;
+        }
+        let _ = write!(csv, "{t}");
+        for (a, v) in b.target.iter().enumerate() {
+            let _ = write!(csv, ",{v}");
+            if a < lo.len() {
+                lo[a] = lo[a].min(*v);
+                hi[a] = hi[a].max(*v);
+            }
+        }
+        csv.push('\n');
+    }
+    let ranges = m
+        .axes
+        .iter()
+        .enumerate()
+        .map(|(a, ax)| {
+            json!({
+                "axis": ax.name,
+                "min": lo[a],
+                "max": hi[a],
+                "unit": if ax.is_rotary() { "deg" } else { "mm" },
+            })
+        })
+        .collect();
+    (csv.into_bytes(), Value::Array(ranges))
+}

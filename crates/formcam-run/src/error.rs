@@ -16,4 +16,7 @@ pub enum RunError {
     /// A plot could not be drawn.
     #[error(transparent)]
     Plot(#[from] formcam_plot::PlotError),
+    /// A correction or a closed loop that failed.
+    #[error(transparent)]
+    Correct(#[from] crate::correct::CorrectRunError),
 }

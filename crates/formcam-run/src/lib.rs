@@ -6,8 +6,13 @@
 //! with the one line a caller prints. The command line, the local server and
 //! bindings call these functions and only decide where the files go.
 
+mod correct;
 mod error;
 mod files;
 
+pub use correct::{
+    CorrectRunError, Corrected, History, correct, correct_job, correct_simulate, output_folder,
+    read_measurements,
+};
 pub use error::RunError;
 pub use files::{ResultFile, RunOutput};

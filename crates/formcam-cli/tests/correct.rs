@@ -175,37 +175,6 @@ fn a_constant_error_is_removed_and_other_lines_are_kept() {
 }
 
 #[test]
-fn a_node_table_is_corrected_too() {
-    let dir = scratch("table");
-    let (m, _) = plate(&dir);
-    let t = dir.join("nodes.csv");
-    std::fs::write(
-        &t,
-        "x,y,z\n10.000,10.000,0.000\n60.000,50.000,0.000\n200.000,50.000,0.000\n",
-    )
-    .unwrap();
-    let out = dir.join("nodes-corrected.csv");
-    let o = run(&[
-        "correct",
-        "--measurements",
-        s(&m),
-        "--program",
-        s(&t),
-        "-o",
-        s(&out),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let text = std::fs::read_to_string(&out).unwrap();
-    assert_eq!(
-        text,
-        "x,y,z\n10.000,10.000,-0.100\n60.000,50.000,-0.100\n200.000,50.000,0.000\n"
-    );
-    let r: serde_json::Value = json(dir.join("nodes-corrected.report.json"));
-    assert_eq!(r["nodes_outside"], 1);
-    assert_eq!(r["outside_lines"], "3");
-}
-
-#[test]
 fn bad_input_gives_one_line_errors_and_no_program() {
     let dir = scratch("bad");
     let (m, p) = plate(&dir);
@@ -301,7 +270,7 @@ fn bad_input_gives_one_line_errors_and_no_program() {
     assert_eq!(std::fs::read_to_string(&m).unwrap(), cmm_before);
     // Options out of range name the option.
     for (flag, value, want) in [
-        ("--gain", "0", "gain = 0"),
+        ("--gain", "0", "--gain 0: allowed (0, 2]"),
         ("--tool", "ball:-2", "ball radius"),
         ("--interpolation", "spline", "allowed bilinear, bicubic"),
     ] {
@@ -325,59 +294,42 @@ fn bad_input_gives_one_line_errors_and_no_program() {
 }
 
 #[test]
-fn the_closed_loop_converges() {
+fn the_closed_loop_writes_its_rounds_and_names_a_bad_field() {
+    // The loop's figures are checked in formcam-run's tests; here the
+    // command: its files and its one-line error.
     let dir = scratch("loop");
     let scenario = dir.join("loop.toml");
     std::fs::write(
         &scenario,
-        "[surface]\nkind = \"nose-cone\"\nlength = 240.0\nwidth = 120.0\nradius_start = 150.0\nradius_end = 260.0\n\
+        "[surface]\nkind = \"panel\"\nlength = 60.0\nwidth = 40.0\nradius_x = 500.0\nradius_y = 400.0\n\
          [program]\ntool = \"ball:5\"\nstep = 2.0\nstep_over = 2.0\nfeed = 2000.0\n\
-         [warp]\namplitude = 0.4\n\
-         [cmm]\nsections = 13\npoints = 9\nnoise = 0.0\n\
-         [loop]\niterations = 2\ninterpolation = \"bicubic\"\nmargin_mm = 2.0\nsection_study = [5, 13]\n",
+         [warp]\namplitude = 0.2\n\
+         [cmm]\nsections = 5\npoints = 5\n\
+         [loop]\niterations = 1\n",
     )
     .unwrap();
     let out = dir.join("out");
     let o = run(&["correct", "simulate", s(&scenario), "-o", s(&out)]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let r: serde_json::Value = json(out.join("report.json"));
-    let before = r["max_deviation_before_mm"].as_f64().unwrap();
-    let after = r["max_deviation_after_mm"].as_f64().unwrap();
-    assert!(before > 0.25, "{before}");
-    assert!(after < 0.02, "{after}");
-    let rounds = r["rounds"].as_array().unwrap();
-    assert_eq!(rounds.len(), 3);
-    // Finer sections leave less.
-    let study = r["section_study"].as_array().unwrap();
-    let at = |n: u64, kind: &str| {
-        study
-            .iter()
-            .find(|x| x["sections"] == n && x["interpolation"] == kind)
-            .unwrap()["true_max_mm"]
-            .as_f64()
-            .unwrap()
-    };
-    assert!(at(13, "bilinear") < at(5, "bilinear"));
-    assert!(at(5, "bicubic") < at(5, "bilinear"));
     for f in [
         "program-0.nc",
-        "program-2.nc",
+        "program-1.nc",
         "cmm-0.csv",
+        "cmm-1.csv",
         "convergence.svg",
         "deviations-before.svg",
+        "deviations-after.svg",
+        "report.json",
     ] {
         assert!(out.join(f).exists(), "{f}");
     }
-    // Rounds are whole numbers: the x axis is labelled 0, 1, 2 only.
-    let svg = std::fs::read_to_string(out.join("convergence.svg")).unwrap();
-    let mut rounds_axis: Vec<String> = texts(&svg)
-        .into_iter()
-        .filter(|(anchor, t)| anchor == "middle" && t.parse::<f64>().is_ok())
-        .map(|(_, t)| t)
-        .collect();
-    rounds_axis.dedup();
-    assert_eq!(rounds_axis, ["0", "1", "2"], "{svg}");
-    // A bad scenario names the field.
+    assert_eq!(
+        json(out.join("report.json"))["rounds"]
+            .as_array()
+            .unwrap()
+            .len(),
+        2
+    );
     std::fs::write(
         &scenario,
         std::fs::read_to_string(&scenario)
@@ -392,11 +344,11 @@ fn the_closed_loop_converges() {
         "-o",
         s(&dir.join("bad")),
     ]);
-    assert!(
-        String::from_utf8_lossy(&o.stderr).contains("program.step = 0"),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    assert!(e.contains("loop.toml: program.step = 0"), "{e}");
+    assert!(!dir.join("bad").exists());
 }
 
 #[test]
@@ -419,63 +371,6 @@ fn the_bundled_correction_example_runs() {
     // The U-turns beyond the panel's ends are outside and left alone.
     assert_eq!(r["arcs_linearised"], 30);
     assert!(r["nodes_outside"].as_u64().unwrap() > 1000);
-}
-
-#[test]
-fn long_moves_are_split_on_request_so_the_correction_bends_them() {
-    let dir = scratch("split");
-    // The part is high in the middle along x: 0.0001 x (120 - x).
-    let mut cmm = String::from("section,point,x_nom,y_nom,z_nom,x_act,y_act,z_act\n");
-    for (j, y) in [0.0, 50.0, 100.0].iter().enumerate() {
-        for (i, x) in [0.0, 30.0, 60.0, 90.0, 120.0].iter().enumerate() {
-            let dz = 0.0001 * x * (120.0 - x);
-            cmm.push_str(&format!("S{j},{i},{x},{y},0,{x},{y},{dz}\n"));
-        }
-    }
-    let m = dir.join("cmm.csv");
-    std::fs::write(&m, cmm).unwrap();
-    let p = dir.join("line.nc");
-    let prog = "G90 G0 X0.000 Y50.000 Z5.000\nG1 Z0.000 F600\nX120.000\nG0 Z5.000\n";
-    std::fs::write(&p, prog).unwrap();
-    // Whole: both ends of the long move are where the part is right.
-    let whole = dir.join("whole.nc");
-    let o = run(&[
-        "correct",
-        "--measurements",
-        s(&m),
-        "--program",
-        s(&p),
-        "-o",
-        s(&whole),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert_eq!(std::fs::read_to_string(&whole).unwrap(), prog);
-    // Split into 10 mm pieces: the middle goes down by the deviation.
-    let split = dir.join("split.nc");
-    let o = run(&[
-        "correct",
-        "--measurements",
-        s(&m),
-        "--program",
-        s(&p),
-        "-o",
-        s(&split),
-        "--max-segment",
-        "10",
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let text = std::fs::read_to_string(&split).unwrap();
-    assert!(
-        text.starts_with("(formcam correct: 1 G1 moves split"),
-        "{text}"
-    );
-    assert!(text.contains("\nG1 X60.000 Z-0.360\n"), "{text}");
-    assert_eq!(
-        text.lines().filter(|l| l.starts_with("G1 X")).count(),
-        11,
-        "{text}"
-    );
-    assert_eq!(json(dir.join("split.report.json"))["moves_split"], 1);
 }
 
 #[test]

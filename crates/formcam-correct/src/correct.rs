@@ -2,13 +2,16 @@
 //! surface, interpolate the deviation there, move the node against it.
 
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
+use rayon::prelude::*;
 
 use crate::patch::Foot;
 use crate::vec3::{V3, axpy, cross, dot, norm, scale, sub, unit};
 use crate::{CorrectError, Grid, Interpolation, Surface};
 
-/// The milling tool, as the program's nodes describe it.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The milling tool, as the program's nodes describe it: `point` or
+/// `ball:R` (R in mm) in job files and on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[serde(tag = "kind", rename_all = "lowercase")]
 pub enum Tool {
     /// The nodes are the tool's contact points on the surface: a node moves
     /// by the whole deviation vector (docs/correction.md).
@@ -18,8 +21,31 @@ pub enum Tool {
     /// deviation's normal component, so the contact point moves by it.
     Ball {
         /// The ball's radius, mm.
+        #[serde(rename = "radius_mm")]
         radius: f64,
     },
+}
+
+impl std::str::FromStr for Tool {
+    type Err = CorrectError;
+
+    /// `point` or `ball:R` (R in mm, > 0).
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let bad = |m: String| Err(CorrectError::Option(m));
+        if s == "point" {
+            return Ok(Self::Point);
+        }
+        let Some(r) = s.strip_prefix("ball:") else {
+            return bad("allowed `point` or `ball:R` (R in mm)".into());
+        };
+        let Ok(radius) = r.trim().parse::<f64>() else {
+            return bad(format!("the radius `{r}` is not a number (e.g. ball:6)"));
+        };
+        if !(radius.is_finite() && radius > 0.0) {
+            return bad("the ball radius must be > 0 mm".into());
+        }
+        Ok(Self::Ball { radius })
+    }
 }
 
 /// Correction options.
@@ -334,41 +360,23 @@ impl<'g> Corrector<'g> {
         }
     }
 
-    /// The corrections of all `nodes`, computed on all cores.
+    /// The corrections of all `nodes`, computed on rayon's global pool: one
+    /// run of consecutive nodes per thread (at least 4096 nodes each), each
+    /// run walking from one node's facet to the next.
     pub fn correct(&self, nodes: &[V3]) -> Vec<NodeCorrection> {
-        let threads = std::thread::available_parallelism()
-            .map(|n| n.get())
-            .unwrap_or(1)
-            .min(nodes.len().div_ceil(4096).max(1));
-        if threads <= 1 {
-            let mut hint = None;
-            return nodes
-                .iter()
-                .map(|&p| self.correct_near(p, &mut hint))
-                .collect();
-        }
-        let chunk = nodes.len().div_ceil(threads);
-        std::thread::scope(|sc| {
-            let handles: Vec<_> = nodes
-                .chunks(chunk)
-                .map(|part| {
-                    sc.spawn(move || {
-                        let mut hint = None;
-                        part.iter()
-                            .map(|&p| self.correct_near(p, &mut hint))
-                            .collect::<Vec<_>>()
-                    })
-                })
-                .collect();
-            let mut out = Vec::with_capacity(nodes.len());
-            for h in handles {
-                match h.join() {
-                    Ok(v) => out.extend(v),
-                    Err(e) => std::panic::resume_unwind(e),
-                }
-            }
-            out
-        })
+        let runs = rayon::current_num_threads()
+            .min(nodes.len().div_ceil(4096))
+            .max(1);
+        let run = nodes.len().div_ceil(runs).max(1);
+        nodes
+            .par_chunks(run)
+            .map(|part| {
+                part.iter()
+                    .scan(None, |hint, &p| Some(self.correct_near(p, hint)))
+                    .collect::<Vec<_>>()
+            })
+            .collect::<Vec<_>>()
+            .concat()
     }
 }
 

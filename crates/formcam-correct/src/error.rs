@@ -1,5 +1,7 @@
 use thiserror::Error;
 
+use crate::JobField;
+
 /// Everything that can stop a correction.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum CorrectError {
@@ -18,6 +20,20 @@ pub enum CorrectError {
     /// A scenario of the closed-loop check that cannot be used.
     #[error("{0}")]
     Scenario(String),
+    /// A job file that cannot be read (not TOML, no `[correct]` table, an
+    /// unknown or missing field).
+    #[error("{0}")]
+    Job(String),
+    /// A setting out of range, named as the job file's field.
+    #[error("{field} = {value}: {rule}")]
+    Field {
+        /// The setting.
+        field: JobField,
+        /// Its value as given.
+        value: String,
+        /// What is allowed.
+        rule: String,
+    },
     /// A measured deviation beyond the stated limit (a typing error in the
     /// report, or a part too far off to correct by re-milling).
     #[error(
@@ -41,6 +57,19 @@ pub enum CorrectError {
     Displacement {
         /// The node's index among the corrected nodes (0-based).
         node: usize,
+        /// The length of its displacement, mm.
+        displacement_mm: f64,
+        /// The limit, mm.
+        limit_mm: f64,
+    },
+    /// A program's node whose displacement is beyond the stated limit.
+    #[error(
+        "line {line}: the node would move by {displacement_mm:.3} mm, beyond the limit of \
+         {limit_mm} mm"
+    )]
+    NodeDisplacement {
+        /// The node's program line (1-based).
+        line: usize,
         /// The length of its displacement, mm.
         displacement_mm: f64,
         /// The limit, mm.

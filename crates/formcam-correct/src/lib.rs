@@ -17,24 +17,43 @@
 //! * [`simulate`] — the closed-loop check: mill, mould with a warp, measure,
 //!   correct, again.
 //! * [`NodeTable`] — a tool path given as a CSV of nodes.
+//! * [`MillingProgram`] and [`Corrector::apply`] — a whole program
+//!   corrected and written back; [`correct_program`] — the pipeline from a
+//!   CMM report to the corrected program and its [`Report`].
+//! * [`CorrectionJob`] — the `[correct]` job file; [`ScenarioJob`] — the
+//!   closed-loop scenario file.
 
+mod apply;
 mod correct;
 mod error;
 mod grid;
+mod job;
 mod measure;
 mod nodes;
 mod patch;
+mod pipeline;
+mod program;
+mod report;
+mod scenario;
 pub mod simulate;
 mod smooth;
 mod vec3;
 
+pub use apply::{Applied, line_ranges};
 pub use correct::{
     Corrector, EDGE_TOLERANCE_MM, NodeCorrection, Options, Placement, Tool, Totals,
     check_displacement,
 };
 pub use error::CorrectError;
 pub use grid::Grid;
+pub use job::{
+    CorrectionJob, DEFAULT_ARC_TOLERANCE_MM, DEFAULT_MAX_DEVIATION_MM, JobField, Settings,
+};
 pub use measure::{MeasuredPoint, Measurements, Section};
 pub use nodes::NodeTable;
 pub use patch::{Interpolation, Surface};
+pub use pipeline::{Correction, correct_program};
+pub use program::MillingProgram;
+pub use report::Report;
+pub use scenario::ScenarioJob;
 pub use smooth::{Smoothing, smooth};

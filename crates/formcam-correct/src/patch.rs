@@ -6,7 +6,8 @@ use crate::Grid;
 use crate::vec3::{V3, axpy, cross, dot, sub, unit};
 
 /// How the surface and the deviations are interpolated between measured points.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Interpolation {
     /// The bilinear Coons patch per facet (eq. 1, docs/correction.md).
     Bilinear,
@@ -31,6 +32,16 @@ impl Interpolation {
             Self::Bilinear => "bilinear",
             Self::Bicubic => "bicubic",
         }
+    }
+}
+
+impl std::str::FromStr for Interpolation {
+    type Err = crate::CorrectError;
+
+    /// `bilinear` or `bicubic`.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::from_name(s)
+            .ok_or_else(|| crate::CorrectError::Option("allowed bilinear, bicubic".into()))
     }
 }
 

@@ -12,12 +12,12 @@
 //! The true error after each round is also measured without noise on a
 //! dense check grid.
 
-use formcam_nc::{Dialect, NodeKind, Toolpath, ToolpathOptions, read_toolpath};
+use formcam_nc::{Dialect, ToolpathOptions};
 
-use crate::vec3::{V3, add, axpy, cross, dot, norm, scale, sub, unit};
+use crate::vec3::{V3, axpy, cross, dot, norm, scale, sub, unit};
 use crate::{
-    CorrectError, Corrector, Grid, Interpolation, MeasuredPoint, Measurements, Options, Section,
-    Tool, smooth,
+    CorrectError, Corrector, Grid, Interpolation, MeasuredPoint, Measurements, MillingProgram,
+    Options, Section, Tool, smooth,
 };
 
 /// The nominal mould surface.
@@ -377,7 +377,7 @@ impl Scenario {
     /// Corrects a program read by [`feed_nodes`] from `m`; returns its text.
     fn correct(
         &self,
-        (tp, feed): &(Toolpath, Vec<V3>),
+        (program, _): &(MillingProgram, Vec<V3>),
         m: &Measurements,
         options: Options,
     ) -> Result<String, CorrectError> {
@@ -385,22 +385,7 @@ impl Scenario {
         if self.smoothing {
             smooth(&mut grid, self.noise);
         }
-        let corrector = Corrector::new(&grid, options)?;
-        let c = corrector.correct(feed);
-        let mut it = c.iter();
-        let positions: Vec<V3> = tp
-            .nodes
-            .iter()
-            .map(|n| {
-                if n.kind == NodeKind::Rapid {
-                    n.position
-                } else {
-                    it.next()
-                        .map_or(n.position, |c| add(n.position, c.displacement))
-                }
-            })
-            .collect();
-        Ok(tp.write(&positions, &[])?)
+        Ok(Corrector::new(&grid, options)?.apply(program, None)?.text)
     }
 
     /// Runs the loop: measure the part of the nominal program, then
@@ -481,23 +466,24 @@ impl Scenario {
     }
 }
 
-/// Reads a program of the loop: the tool path and its feed nodes.
-fn feed_nodes(program: &str) -> Result<(Toolpath, Vec<V3>), CorrectError> {
-    let tp = read_toolpath(
-        program,
-        &ToolpathOptions {
+/// Reads a program of the loop: the program and its feed nodes.
+fn feed_nodes(text: &str) -> Result<(MillingProgram, Vec<V3>), CorrectError> {
+    let program = MillingProgram::gcode(
+        text,
+        ToolpathOptions {
             dialect: Dialect::Iso,
-            arc_tolerance_mm: 0.001,
+            arc_tolerance_mm: crate::DEFAULT_ARC_TOLERANCE_MM,
             max_segment_mm: None,
         },
     )?;
-    let feed = tp
-        .nodes
-        .iter()
-        .filter(|n| n.kind != NodeKind::Rapid)
-        .map(|n| n.position)
+    let feed = program
+        .positions()
+        .into_iter()
+        .zip(program.movable())
+        .filter(|(_, m)| *m)
+        .map(|(p, _)| p)
         .collect();
-    Ok((tp, feed))
+    Ok((program, feed))
 }
 
 /// The slope of a sequence at `k` of `n` (`n >= 2`): central differences,

@@ -23,7 +23,7 @@ use crate::Grid;
 use crate::vec3::{V3, dot, scale};
 
 /// What the smoothing did.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Smoothing {
     /// The stated noise level (standard deviation, mm).
     pub noise_mm: f64,

@@ -41,6 +41,9 @@ pub enum RunError {
         /// The reason.
         source: serde_json::Error,
     },
+    /// A correction or a closed loop that failed.
+    #[error(transparent)]
+    Correct(#[from] crate::correct::CorrectRunError),
 }
 
 impl RunError {

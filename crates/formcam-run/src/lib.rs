@@ -6,11 +6,16 @@
 //! with the one line a caller prints. The command line, the local server and
 //! bindings call these functions and only decide where the files go.
 
+mod correct;
 mod dress;
 mod error;
 mod files;
 mod wind;
 
+pub use correct::{
+    CorrectRunError, Corrected, History, correct, correct_job, correct_simulate, output_folder,
+    read_measurements,
+};
 pub use dress::{dress, dress_text, is_dress_job};
 pub use error::RunError;
 pub use files::{ResultFile, RunOutput};

@@ -1,0 +1,126 @@
+//! A correction applied to a whole program: its movable nodes corrected,
+//! the displacement limit checked, the program written back.
+
+use crate::vec3::{V3, add, norm};
+use crate::{CorrectError, Corrector, MillingProgram, NodeCorrection, Placement, Totals};
+
+/// A program corrected by [`Corrector::apply`].
+#[derive(Debug, Clone)]
+pub struct Applied {
+    /// The corrected program's text, in the program's own format.
+    pub text: String,
+    /// Every node's corrected position, mm.
+    pub positions: Vec<V3>,
+    /// The movable nodes before the correction, mm (rapid moves left out).
+    pub nodes: Vec<V3>,
+    /// The correction of each movable node, in the order of `nodes`.
+    pub corrections: Vec<NodeCorrection>,
+    /// The program lines (1-based, ascending, each once) of the nodes left
+    /// unchanged because they lie beyond the margin.
+    pub outside_lines: Vec<usize>,
+    /// The totals over `corrections`.
+    pub totals: Totals,
+}
+
+impl Corrector<'_> {
+    /// Corrects every movable node of `program` and writes it back. With
+    /// `limit_mm`, a node that would move farther is an error naming its
+    /// program line ([`CorrectError::NodeDisplacement`]).
+    pub fn apply(
+        &self,
+        program: &MillingProgram,
+        limit_mm: Option<f64>,
+    ) -> Result<Applied, CorrectError> {
+        let positions = program.positions();
+        let movable = program.movable();
+        let lines: Vec<usize> = (0..positions.len())
+            .filter(|&k| movable[k])
+            .map(|k| program.line_of(k))
+            .collect();
+        let nodes: Vec<V3> = positions
+            .iter()
+            .zip(&movable)
+            .filter(|(_, m)| **m)
+            .map(|(p, _)| *p)
+            .collect();
+        let corrections = self.correct(&nodes);
+        if let Some(limit_mm) = limit_mm {
+            check_limit(&corrections, &lines, limit_mm)?;
+        }
+        let mut moved = positions;
+        let mut next = corrections.iter();
+        for (p, _) in moved.iter_mut().zip(&movable).filter(|(_, m)| **m) {
+            if let Some(c) = next.next() {
+                *p = add(*p, c.displacement);
+            }
+        }
+        let mut outside_lines: Vec<usize> = corrections
+            .iter()
+            .zip(&lines)
+            .filter(|(c, _)| c.placement == Placement::Outside)
+            .map(|(_, l)| *l)
+            .collect();
+        outside_lines.dedup();
+        Ok(Applied {
+            text: program.write(&moved)?,
+            positions: moved,
+            totals: Totals::of(&corrections),
+            nodes,
+            corrections,
+            outside_lines,
+        })
+    }
+}
+
+/// The first node (in program order) moving farther than `limit_mm`, as an
+/// error naming its program line.
+fn check_limit(
+    corrections: &[NodeCorrection],
+    lines: &[usize],
+    limit_mm: f64,
+) -> Result<(), CorrectError> {
+    for (c, line) in corrections.iter().zip(lines) {
+        let d = norm(c.displacement);
+        if d.is_nan() || d > limit_mm {
+            return Err(CorrectError::NodeDisplacement {
+                line: *line,
+                displacement_mm: d,
+                limit_mm,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Program lines as ranges: `1-3, 7, 9-12`.
+pub fn line_ranges(lines: &[usize]) -> String {
+    let mut out: Vec<String> = Vec::new();
+    let mut k = 0;
+    while k < lines.len() {
+        let start = lines[k];
+        let mut end = start;
+        while k + 1 < lines.len() && lines[k + 1] <= end + 1 {
+            k += 1;
+            end = lines[k];
+        }
+        out.push(if end == start {
+            start.to_string()
+        } else {
+            format!("{start}-{end}")
+        });
+        k += 1;
+    }
+    out.join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_read_as_ranges() {
+        assert_eq!(line_ranges(&[1, 2, 3, 7, 9, 10, 11, 12]), "1-3, 7, 9-12");
+        assert_eq!(line_ranges(&[4]), "4");
+        assert_eq!(line_ranges(&[]), "");
+    }
+}

@@ -5,11 +5,10 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use formcam_machine::file::MachineKind;
-use formcam_machine::ik::{AxisTrack, IkMethod, solve};
+use formcam_machine::{AxisTrack, IkMethod, MachineKind, solve};
 use formcam_machine::{Machine, Target, band_passed, placement_targets, winder_targets};
 use formcam_winding::eye::{EyeSpec, EyeTrajectory, eye_trajectory};
-use formcam_winding::job::{EyeJob, Mandrel, MandrelSpec, WindingSpec};
+use formcam_winding::job::{EyeJob, LayerKind, Mandrel, MandrelSpec, WindingSpec};
 use formcam_winding::{Circuit, Layer, plan_layer};
 use serde::Deserialize;
 use serde_json::json;
@@ -578,7 +577,7 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
             at(e.to_string()
                 .replacen("winding.", &format!("layer[{}].", i + 1), 1))
         };
-        if w.kind.as_deref() == Some("skip") {
+        if w.kind == Some(LayerKind::Skip) {
             let turn = w.mandrel_rotation_deg.ok_or_else(|| {
                 at(format!(
                     "layer[{}].mandrel_rotation_deg: missing: how far the mandrel turns, degrees",
@@ -594,8 +593,8 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
             .map_err(field)?;
         // A hoop layer on a vessel covers its cylinder: planned on that cylinder,
         // its targets moved to where the cylinder starts.
-        let (mandrel, z_shift) = match (&mandrel, w.kind.as_deref()) {
-            (Mandrel::Vessel(v), Some("hoop")) => {
+        let (mandrel, z_shift) = match (&mandrel, w.kind) {
+            (Mandrel::Vessel(v), Some(LayerKind::Hoop)) => {
                 let (z1, z2) = v.cylinder_range();
                 let cyl = formcam_geom::Cylinder::new(v.radius(), z2 - z1)
                     .map_err(|e| field(e.into()))?;
@@ -634,7 +633,7 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
     }
     warn(job_path, &warnings);
     // 2. Eye, axes and blocks of every winding layer, one thread per layer.
-    let kind_of = |i: usize| layers[i].kind.clone().unwrap_or_else(|| "helical".into());
+    let kind_of = |i: usize| layers[i].kind.unwrap_or_default().to_string();
     let wind = |i: usize, mandrel: &Mandrel, z_shift: f64, layer: &Layer| {
         let label = format!("layer {} ({})", i + 1, kind_of(i));
         let traj = match (&eye, m.roles.kind) {
@@ -820,7 +819,7 @@ fn run_layered(job_path: &Path, job: Layered, out: &Path) -> Result<String, CliE
         job_path.display(),
         layers
             .iter()
-            .map(|l| l.kind.clone().unwrap_or_else(|| "helical".into()))
+            .map(|l| l.kind.unwrap_or_default().to_string())
             .collect::<Vec<_>>()
             .join(" + "),
         m.name,

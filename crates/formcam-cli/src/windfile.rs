@@ -24,7 +24,7 @@
 use std::fs;
 use std::path::Path;
 
-use formcam_winding::job::{EyeJob, MandrelSpec, WindingSpec};
+use formcam_winding::job::{EyeJob, LayerKind, MandrelSpec, WindingSpec};
 use serde_json::{Map, Value};
 
 use crate::CliError;
@@ -414,7 +414,7 @@ pub fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
                 ));
             }
             Ok(WindingSpec {
-                kind: Some("hoop".into()),
+                kind: Some(LayerKind::Hoop),
                 one_way: terminal.then_some(true),
                 ..base.clone()
             })
@@ -475,7 +475,7 @@ pub fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
                     hoop(&mut l, false)?
                 } else {
                     WindingSpec {
-                        kind: Some("helical".into()),
+                        kind: Some(LayerKind::Helical),
                         winding_angle_deg: Some(wind_angle),
                         pattern_number: Some(h.pattern_number),
                         skip_index: Some(h.skip_index),
@@ -485,7 +485,7 @@ pub fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
                 }
             }
             "skip" => WindingSpec {
-                kind: Some("skip".into()),
+                kind: Some(LayerKind::Skip),
                 mandrel_rotation_deg: Some(l.required("mandrelRotation")?),
                 ..WindingSpec::default()
             },

@@ -8,7 +8,9 @@ use std::f64::consts::PI;
 
 use common::vessel;
 use formcam_geom::{Cylinder, Meridian};
-use formcam_winding::eye::{EyeMode, EyeSpec, axis_parallel_length, eye_at, eye_trajectory};
+use formcam_winding::eye::{
+    Constraint, EyeMode, EyeSpec, axis_parallel_length, eye_at, eye_trajectory,
+};
 use formcam_winding::{Circuit, Ends, LayerSpec, Slippage, plan_layer};
 
 fn tube_layer(m: &dyn Meridian, deg: f64) -> formcam_winding::Layer {
@@ -401,7 +403,7 @@ fn long_trajectories_agree_point_by_point_with_the_closed_forms() {
     let reported = eye
         .violations
         .iter()
-        .find(|v| v.constraint == "slack")
+        .find(|v| v.constraint == Constraint::Slack)
         .map_or(0, |v| v.count);
     // Axis-parallel slackens the band near the turn-arounds here.
     assert!(slack > 0);

@@ -788,3 +788,26 @@ fn feasibility(m: &Machine, targets: &[Target], t: &AxisTrack) -> Vec<Issue> {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+
+    use super::*;
+
+    /// The names `summary.json` and `[checks] allow` know.
+    #[test]
+    fn issue_kinds_keep_their_names_in_files_and_messages() {
+        let kinds = [
+            (IssueKind::Limit, "limit"),
+            (IssueKind::Unreachable, "unreachable"),
+            (IssueKind::Clearance, "clearance"),
+            (IssueKind::Jump, "jump"),
+        ];
+        for (k, name) in kinds {
+            assert_eq!(k.to_string(), name);
+            assert_eq!(format!("{k:<12}|"), format!("{name:<12}|"));
+            assert_eq!(serde_json::to_value(k).unwrap(), name);
+        }
+    }
+}

@@ -32,7 +32,7 @@ pub enum Constraint {
 }
 
 impl Constraint {
-    /// Every constraint, in the order of [`Checks`]' slots.
+    /// Every constraint, in the order of the checks' slots.
     pub const ALL: [Constraint; 5] = [
         Constraint::Cyclicity,
         Constraint::Clearance,
@@ -260,4 +260,99 @@ pub(super) fn closure(e: &[EyePoint], turn: f64) -> f64 {
     );
     let pb = (b.eye_r * b.eye_v.cos(), b.eye_r * b.eye_v.sin(), b.eye_z);
     ((pa.0 - pb.0).powi(2) + (pa.1 - pb.1).powi(2) + (pa.2 - pb.2).powi(2)).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+
+    use super::*;
+
+    /// The names `summary.json`, `eye.csv` readers and `[checks] allow` know.
+    #[test]
+    fn constraints_keep_their_names_in_files_and_messages() {
+        let names = [
+            "cyclicity",
+            "clearance",
+            "l_max",
+            "slack",
+            "reverse-rotation",
+        ];
+        for (c, name) in Constraint::ALL.into_iter().zip(names) {
+            assert_eq!(c.to_string(), name);
+            assert_eq!(format!("{c:>18}"), format!("{name:>18}"));
+            assert_eq!(serde_json::to_value(c).unwrap(), name);
+        }
+    }
+
+    /// Eye points along `x = 0..n` with every constraint broken somewhere.
+    fn run(n: usize) -> Vec<EyePoint> {
+        (0..n)
+            .map(|i| {
+                let x = i as f64;
+                // Free length falling faster than the band is laid round i = 7
+                // (slack), beyond l_max at 11..13, inside the clearance at 4 and 17,
+                // the eye turning back at 21.
+                let l = 50.0
+                    + if (7..9).contains(&i) { -3.0 * x } else { 0.0 }
+                    + if (11..14).contains(&i) { 60.0 } else { 0.0 };
+                let eye_v = 0.01 * x - if i == 22 { 0.05 } else { 0.0 };
+                EyePoint {
+                    x,
+                    z: x,
+                    r: 100.0,
+                    v: 0.01 * x,
+                    alpha: 0.5,
+                    l,
+                    margin: if i == 4 || i == 17 { -0.5 } else { 1.0 },
+                    eye_z: x,
+                    eye_r: 120.0,
+                    eye_v,
+                    lambda: l + x - (0.3 * x).sin(),
+                    u: 0.0,
+                }
+            })
+            .collect()
+    }
+
+    /// Checks summed run by run and joined in order are the checks of the
+    /// whole: the same violations (first `x`, count, worst) in the same order,
+    /// the same pull speeds.
+    #[test]
+    fn runs_joined_in_order_check_as_one() {
+        let spec = EyeSpec {
+            l_max: 100.0,
+            ..EyeSpec::default()
+        };
+        let mut whole = run(30);
+        let one = Checks::of_run(&mut whole, &spec);
+        for cut in [1, 5, 8, 12, 18, 29] {
+            let mut a = run(30);
+            let mut b = a.split_off(cut);
+            let mut joined = Checks::of_run(&mut a, &spec);
+            let next = Checks::of_run(&mut b, &spec);
+            if let (Some(last), Some(first)) = (a.last_mut(), b.first()) {
+                joined.interval(last, first);
+            }
+            joined.join(next);
+            a.extend(b);
+            assert_eq!(joined.violations(), one.violations(), "cut at {cut}");
+            let (s, t) = (joined.stats(), one.stats());
+            assert_eq!((s.u_min, s.u_max), (t.u_min, t.u_max), "cut at {cut}");
+            assert!((s.u_mean - t.u_mean).abs() < 1e-12, "cut at {cut}");
+            assert!((s.u_rms_dev - t.u_rms_dev).abs() < 1e-12, "cut at {cut}");
+            let u = |e: &[EyePoint]| e.iter().map(|p| p.u).collect::<Vec<_>>();
+            assert_eq!(u(&a), u(&whole), "cut at {cut}");
+        }
+        let kinds: Vec<Constraint> = one.violations().iter().map(|v| v.constraint).collect();
+        assert_eq!(
+            kinds,
+            [
+                Constraint::Clearance,
+                Constraint::Slack,
+                Constraint::LMax,
+                Constraint::ReverseRotation
+            ]
+        );
+    }
 }

@@ -3,7 +3,8 @@
 //!
 //! For a path point with tangent `tau` (eq. 8–9) the eye lies at `P + l tau`;
 //! its cylindrical coordinates are eq. 10. A trajectory is a free length `l(x)`
-//! over the circuit's parameter `x` (the laid band length, see [`Circuit`]).
+//! over the circuit's parameter `x` (the laid band length, see
+//! [`Circuit`](crate::Circuit)).
 //!
 //! * `axis-parallel`: `R(l) = R_eye`, solved in closed form;
 //! * `equidistant`: the eye keeps `clearance` from the mandrel — on the upper

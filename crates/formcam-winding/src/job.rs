@@ -5,6 +5,7 @@
 //! dotted name (`mandrel.radius`) with what it should be.
 
 use std::fmt;
+use std::str::FromStr;
 
 use formcam_geom::{Cone, Cylinder, DomeShape, GeomError, Jet, Meridian, Tabulated, Vessel};
 use serde::{Deserialize, Serialize};
@@ -105,9 +106,9 @@ pub struct WindingSpec {
     pub one_way: Option<bool>,
 }
 
-/// The kind of a layer (`kind` of a `[[layer]]` table).
+/// The kind of a layer (`kind` of a `[[layer]]` table), read by its name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Deserialize, Serialize)]
-#[serde(rename_all = "lowercase")]
+#[serde(rename_all = "lowercase", try_from = "String")]
 pub enum LayerKind {
     /// Helical (or polar) circuits, the pattern covering the mandrel.
     #[default]
@@ -126,6 +127,27 @@ impl LayerKind {
             LayerKind::Hoop => "hoop",
             LayerKind::Skip => "skip",
         }
+    }
+}
+
+impl FromStr for LayerKind {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        [LayerKind::Helical, LayerKind::Hoop, LayerKind::Skip]
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| {
+                format!("kind: \"{s}\" is not a layer kind; allowed: helical, hoop, skip")
+            })
+    }
+}
+
+impl TryFrom<String> for LayerKind {
+    type Error = String;
+
+    fn try_from(s: String) -> Result<Self, String> {
+        s.parse()
     }
 }
 

@@ -66,7 +66,7 @@ fn layer_kinds_are_read_by_name() {
     let e = toml::from_str::<WindingSpec>("kind = \"spiral\"")
         .unwrap_err()
         .to_string();
-    for allowed in ["spiral", "helical", "hoop", "skip"] {
+    for allowed in ["kind", "spiral", "helical", "hoop", "skip"] {
         assert!(e.contains(allowed), "{e}");
     }
     let none = |_: &str| -> Result<String, String> { Err("no files".into()) };

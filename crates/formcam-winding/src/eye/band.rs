@@ -18,6 +18,7 @@ pub(super) struct Band {
 }
 
 impl Band {
+    #[inline]
     pub(super) fn new(p: &CircuitPoint) -> Self {
         let q = (1.0 + p.dr * p.dr).sqrt();
         let (sa, cos) = p.alpha.sin_cos();
@@ -32,17 +33,20 @@ impl Band {
 
     /// The eye's radial (`d`) and circumferential (`w`) offsets from the axis
     /// in the path point's frame at free length `l`.
+    #[inline]
     fn dw(&self, l: f64) -> (f64, f64) {
         (self.p.r + l * self.ra, l * self.sa)
     }
 
     /// Eye `Z` and `R` at free length `l`.
+    #[inline]
     pub(super) fn eye_zr(&self, l: f64) -> (f64, f64) {
         let (d, w) = self.dw(l);
         (self.p.z + l * self.ca, (d * d + w * w).sqrt())
     }
 
     /// Eye `Z`, `R` and `dR/dl` at free length `l`.
+    #[inline]
     pub(super) fn zr(&self, l: f64) -> (f64, f64, f64) {
         let (d, w) = self.dw(l);
         let rr = (d * d + w * w).sqrt();
@@ -55,6 +59,7 @@ impl Band {
     }
 
     /// Eye `V` at free length `l`.
+    #[inline]
     pub(super) fn v(&self, l: f64) -> f64 {
         let (d, w) = self.dw(l);
         // w >= 0; the plain arctangent is cheaper where the quadrant is known.
@@ -178,6 +183,7 @@ impl Band {
 }
 
 /// Eye position for free length `l`: `(Z, R, V, dZ/dl, dR/dl)` (eq. 10).
+#[inline]
 pub fn eye_at(p: &CircuitPoint, l: f64) -> (f64, f64, f64, f64, f64) {
     let b = Band::new(p);
     let (z, r, dr_dl) = b.zr(l);

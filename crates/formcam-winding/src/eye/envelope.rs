@@ -18,6 +18,7 @@ pub(super) struct Profile {
 
 impl Profile {
     /// `f(z)` and its slope.
+    #[inline]
     pub(super) fn at(&self, z: f64) -> (f64, f64) {
         let n = self.vals.len();
         let t = (z - self.z0) * self.inv_dz;

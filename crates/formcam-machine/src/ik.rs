@@ -15,9 +15,12 @@
 
 use std::cell::RefCell;
 use std::f64::consts::{PI, TAU};
+use std::fmt;
 
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra::{DMatrix, DVector, Dyn, Isometry3, Owned, Point3, Unit, Vector3};
+use rayon::prelude::*;
+use serde::Serialize;
 
 use crate::file::{MachineKind, SpindleFollows};
 use crate::{JointKind, Machine, MachineError, Target};
@@ -36,12 +39,43 @@ pub enum IkMethod {
     ClosedForm,
 }
 
+/// What kind of problem the inverse kinematics found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum IssueKind {
+    /// An axis beyond its limits.
+    Limit,
+    /// The payout point (or the orientation) not reached.
+    Unreachable,
+    /// The eye closer to the mandrel than the clearance.
+    Clearance,
+    /// An axis jumping to another branch between two points.
+    Jump,
+}
+
+impl IssueKind {
+    /// The name in files and messages: `limit`, `unreachable`, `clearance`, `jump`.
+    pub fn name(self) -> &'static str {
+        match self {
+            IssueKind::Limit => "limit",
+            IssueKind::Unreachable => "unreachable",
+            IssueKind::Clearance => "clearance",
+            IssueKind::Jump => "jump",
+        }
+    }
+}
+
+impl fmt::Display for IssueKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.pad(self.name())
+    }
+}
+
 /// A problem found at some points.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Issue {
-    /// `limit`, `unreachable`, `jump`, `clearance` (the eye closer to the mandrel
-    /// than the clearance).
-    pub kind: &'static str,
+    /// What kind.
+    pub kind: IssueKind,
     /// The axis concerned (NC address), if one.
     pub axis: Option<String>,
     /// The first `x` where it happens, mm.
@@ -83,7 +117,7 @@ impl AxisTrack {
 
     /// Whether every axis stays within its limits.
     pub fn limits_ok(&self) -> bool {
-        !self.issues.iter().any(|i| i.kind == "limit")
+        !self.issues.iter().any(|i| i.kind == IssueKind::Limit)
     }
 
     /// The largest position residual, mm.
@@ -594,10 +628,9 @@ pub fn solve(m: &Machine, targets: &[Target], method: IkMethod) -> Result<AxisTr
         prev.clone_from(&q);
     }
     // The residuals of every point by forward kinematics, in runs (one per
-    // thread on long trajectories).
+    // worker of rayon's pool on long trajectories).
     let width = m.axes.len().max(1);
-    let threads = std::thread::available_parallelism()
-        .map_or(1, usize::from)
+    let threads = rayon::current_num_threads()
         .min(targets.len() / 20_000)
         .clamp(1, 16);
     let per = targets.len().div_ceil(threads);
@@ -625,26 +658,13 @@ pub fn solve(m: &Machine, targets: &[Target], method: IkMethod) -> Result<AxisTr
     let residuals: Vec<(f64, f64)> = if threads == 1 || m.axes.is_empty() {
         run(targets, &track.values)
     } else {
-        std::thread::scope(|s| {
-            let handles: Vec<_> = targets
-                .chunks(per)
-                .zip(track.values.chunks(per * width))
-                .map(|(ts, vs)| {
-                    let run = &run;
-                    s.spawn(move || run(ts, vs))
-                })
-                .collect();
-            handles
-                .into_iter()
-                .flat_map(|h| h.join().unwrap_or_default())
-                .collect()
-        })
+        let runs: Vec<Vec<(f64, f64)>> = targets
+            .par_chunks(per)
+            .zip(track.values.par_chunks(per * width))
+            .map(|(ts, vs)| run(ts, vs))
+            .collect();
+        runs.into_iter().flatten().collect()
     };
-    if residuals.len() != targets.len() {
-        return Err(MachineError::Ik(
-            "a worker thread checking the residuals failed".into(),
-        ));
-    }
     (track.residual_mm, track.residual_orientation) = residuals.into_iter().unzip();
     track.issues = feasibility(m, targets, &track);
     Ok(track)
@@ -715,7 +735,7 @@ fn nearest_home_branch(
 /// Limits, unreachable points, the eye's clearance and branch jumps.
 fn feasibility(m: &Machine, targets: &[Target], t: &AxisTrack) -> Vec<Issue> {
     let mut out: Vec<Issue> = Vec::new();
-    let mut note = |kind: &'static str, axis: Option<&str>, x: f64, excess: f64| {
+    let mut note = |kind: IssueKind, axis: Option<&str>, x: f64, excess: f64| {
         if let Some(i) = out
             .iter_mut()
             .find(|i| i.kind == kind && i.axis.as_deref() == axis)
@@ -737,15 +757,15 @@ fn feasibility(m: &Machine, targets: &[Target], t: &AxisTrack) -> Vec<Issue> {
             let v = q[a];
             let excess = (ax.min - v).max(v - ax.max);
             if excess > 1e-9 {
-                note("limit", Some(&ax.name), tg.x, excess);
+                note(IssueKind::Limit, Some(&ax.name), tg.x, excess);
             }
         }
         let res = t.residual_mm[i].max(ORIENTATION_SCALE * t.residual_orientation[i]);
         if res > 1e-6 {
-            note("unreachable", None, tg.x, res);
+            note(IssueKind::Unreachable, None, tg.x, res);
         }
         if tg.clearance_margin < -1e-6 {
-            note("clearance", None, tg.x, -tg.clearance_margin);
+            note(IssueKind::Clearance, None, tg.x, -tg.clearance_margin);
         }
     }
     // A jump: a step much longer than both neighbouring steps on the same axis
@@ -762,9 +782,32 @@ fn feasibility(m: &Machine, targets: &[Target], t: &AxisTrack) -> Vec<Issue> {
             let before = if k > 0 { steps[k - 1] } else { 0.0 };
             let after = steps.get(k + 1).copied().unwrap_or(0.0);
             if step > floor && step > 20.0 * before.max(after) {
-                note("jump", Some(&ax.name), targets[k + 1].x, step);
+                note(IssueKind::Jump, Some(&ax.name), targets[k + 1].x, step);
             }
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+
+    use super::*;
+
+    /// The names `summary.json` and `[checks] allow` know.
+    #[test]
+    fn issue_kinds_keep_their_names_in_files_and_messages() {
+        let kinds = [
+            (IssueKind::Limit, "limit"),
+            (IssueKind::Unreachable, "unreachable"),
+            (IssueKind::Clearance, "clearance"),
+            (IssueKind::Jump, "jump"),
+        ];
+        for (k, name) in kinds {
+            assert_eq!(k.to_string(), name);
+            assert_eq!(format!("{k:<12}|"), format!("{name:<12}|"));
+            assert_eq!(serde_json::to_value(k).unwrap(), name);
+        }
+    }
 }

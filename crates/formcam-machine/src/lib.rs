@@ -10,14 +10,20 @@
 
 mod band;
 mod error;
-pub mod file;
-pub mod ik;
+mod file;
+mod ik;
 mod machine;
 pub mod shipped;
 mod target;
-pub mod urdf;
+mod urdf;
 
 pub use band::band_passed;
 pub use error::MachineError;
+pub use file::{
+    DhSpec, JointType, LinkSpec, MachineFile, MachineKind, MachineTable, OriginSpec, PointSpec,
+    SpindleFollows, VisualSpec,
+};
+pub use ik::{AxisTrack, IkMethod, Issue, IssueKind, ORIENTATION_SCALE, solve};
 pub use machine::{Axis, Joint, JointKind, KeyPoint, Link, Machine, Roles, Shape, Visual};
 pub use target::{Target, placement_targets, winder_targets};
+pub use urdf::links_from_urdf;

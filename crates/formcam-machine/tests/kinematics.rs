@@ -5,8 +5,9 @@
 use std::path::PathBuf;
 
 use formcam_geom::{Cylinder, DomeShape, Meridian, Vessel};
-use formcam_machine::ik::{IkMethod, solve};
-use formcam_machine::{Machine, Target, placement_targets, winder_targets};
+use formcam_machine::{
+    IkMethod, IssueKind, Machine, Target, placement_targets, solve, winder_targets,
+};
 use formcam_winding::eye::{EyeMode, EyeSpec, eye_trajectory};
 use formcam_winding::{Circuit, Ends, LayerSpec, Slippage, plan_layer};
 
@@ -196,7 +197,7 @@ fn a_limit_is_reported_at_the_first_point_beyond_it() {
     let issue = track
         .issues
         .iter()
-        .find(|i| i.kind == "limit" && i.axis.as_deref() == Some("X"))
+        .find(|i| i.kind == IssueKind::Limit && i.axis.as_deref() == Some("X"))
         .unwrap();
     assert_eq!(issue.x, targets[first].x);
     assert_eq!(issue.count, count);
@@ -212,7 +213,7 @@ fn an_unreachable_eye_is_reported() {
     let issue = track
         .issues
         .iter()
-        .find(|i| i.kind == "unreachable")
+        .find(|i| i.kind == IssueKind::Unreachable)
         .unwrap();
     assert_eq!(issue.count, targets.len());
     assert!((track.max_residual_mm() - 50.0).abs() < 1e-9);
@@ -244,7 +245,11 @@ fn an_eye_too_close_to_the_mandrel_is_reported() {
         .iter()
         .filter(|t| t.clearance_margin < -1e-6)
         .count();
-    let issue = track.issues.iter().find(|i| i.kind == "clearance").unwrap();
+    let issue = track
+        .issues
+        .iter()
+        .find(|i| i.kind == IssueKind::Clearance)
+        .unwrap();
     assert!(close > 0);
     assert_eq!(issue.count, close);
     let first = targets.iter().find(|t| t.clearance_margin < -1e-6).unwrap();

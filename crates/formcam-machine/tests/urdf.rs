@@ -4,9 +4,9 @@
 
 use std::path::PathBuf;
 
-use formcam_machine::file::{JointType, MachineFile, PointSpec};
-use formcam_machine::urdf::links_from_urdf;
+use formcam_machine::links_from_urdf;
 use formcam_machine::{JointKind, Machine, MachineError, Shape};
+use formcam_machine::{JointType, MachineFile, PointSpec};
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 
 fn read(path: &str) -> String {

@@ -2,8 +2,8 @@
 
 use formcam_geom::Meridian;
 use formcam_winding::Layer;
+use formcam_winding::bridging_limit;
 use formcam_winding::eye::EyeTrajectory;
-use formcam_winding::minimax::bridging_limit;
 use plotters::prelude::*;
 
 use crate::{PlotError, Series, panels_svg};

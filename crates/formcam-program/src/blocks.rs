@@ -2,9 +2,9 @@
 //! within the tolerances and timed, skip layers' turns, and the whole
 //! program joined from rest to rest with its joins ramped and re-timed.
 
+use formcam_machine::AxisTrack;
 use formcam_machine::Machine;
 use formcam_machine::Target;
-use formcam_machine::ik::AxisTrack;
 use formcam_motion::{
     AxisLimits, Deviation, Timing, Tolerance, check_acceleration, check_timing, deltas, fit_blocks,
     global, join_times, pairwise, preliminary_times, ramp_pieces, with_acceleration,
@@ -117,7 +117,7 @@ pub fn layer_blocks(
         .issues
         .iter()
         .filter_map(|i| {
-            let check = Check::of_ik_issue(i.kind)?;
+            let check = Check::of_ik_issue(i.kind.name())?;
             let what = match (check, &i.axis) {
                 (Check::Limits, Some(a)) => format!("drive axis {a} beyond its limit"),
                 (Check::Clearance, _) => "bring the eye within its clearance".to_string(),

@@ -143,7 +143,7 @@ pub fn eye_violations(layer: &str, violations: &[Violation]) -> Vec<Violated> {
     violations
         .iter()
         .filter_map(|v| {
-            let check = Check::of_eye_constraint(v.constraint)?;
+            let check = Check::of_eye_constraint(v.constraint.name())?;
             let what = match check {
                 Check::Slack => "let the band go slack (the eye feeds it back)",
                 Check::Clearance => "bring the eye within its clearance of the mandrel",

@@ -4,8 +4,8 @@
 
 use std::path::{Path, PathBuf};
 
+use formcam_machine::IkMethod;
 use formcam_machine::Machine;
-use formcam_machine::ik::IkMethod;
 use formcam_machine::shipped::{names, shipped};
 use formcam_nc::{Dialect, Template};
 use formcam_winding::job::{EyeJob, MandrelSpec, WindingSpec};

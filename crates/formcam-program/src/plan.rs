@@ -3,11 +3,10 @@
 //! and the stages of `formcam wind path|eye|axes` stop it early.
 
 use formcam_geom::Cylinder;
-use formcam_machine::file::MachineKind;
-use formcam_machine::ik::{AxisTrack, solve};
+use formcam_machine::{AxisTrack, MachineKind, solve};
 use formcam_machine::{Machine, Target, band_passed, placement_targets, winder_targets};
 use formcam_winding::eye::{EyeSpec, EyeTrajectory, eye_trajectory};
-use formcam_winding::job::{Mandrel, WindingSpec};
+use formcam_winding::job::{LayerKind, Mandrel, WindingSpec};
 use formcam_winding::{Circuit, Layer, WindingError, plan_layer};
 use rayon::prelude::*;
 
@@ -66,8 +65,8 @@ pub struct WoundLayer {
     /// The layer's label in messages, comments and the summary (`layer 2
     /// (helical)`; a single-layer job's is `layer 1`).
     pub label: String,
-    /// The layer's kind as the job names it (`helical` by default).
-    pub kind: String,
+    /// The layer's kind (`helical` by default).
+    pub kind: LayerKind,
     /// A hoop wound one way (a terminal hoop): its outgoing pass only.
     pub one_way: bool,
     /// What the layer does.
@@ -211,7 +210,7 @@ fn plan_layers(job: &WindJob, warnings: &mut Vec<String>) -> Result<Vec<WoundLay
     let mut grown = 0.0;
     let mut out = Vec::with_capacity(specs.len());
     for (i, w) in specs.iter().enumerate() {
-        let kind = w.kind.clone().unwrap_or_else(|| "helical".into());
+        let kind = w.kind.unwrap_or_default();
         let label = if layered {
             format!("layer {} ({kind})", i + 1)
         } else {
@@ -220,7 +219,7 @@ fn plan_layers(job: &WindJob, warnings: &mut Vec<String>) -> Result<Vec<WoundLay
         let one_way = w.one_way == Some(true);
         // Errors name the layer: `layer[2].band_width`.
         let field = |e: WindingError| in_layer_error(layered, i + 1, e.into());
-        if layered && kind == "skip" {
+        if layered && kind == LayerKind::Skip {
             let turn_deg = w
                 .mandrel_rotation_deg
                 .ok_or(ProgramError::SkipTurnMissing { layer: i + 1 })?;
@@ -275,8 +274,8 @@ fn plan_layers(job: &WindJob, warnings: &mut Vec<String>) -> Result<Vec<WoundLay
 /// A hoop layer on a vessel covers its cylinder: planned on that cylinder,
 /// its targets moved to where the cylinder starts.
 fn hoop_mandrel(mandrel: Mandrel, w: &WindingSpec) -> Result<(Mandrel, f64), WindingError> {
-    match (&mandrel, w.kind.as_deref()) {
-        (Mandrel::Vessel(v), Some("hoop")) => {
+    match (&mandrel, w.kind) {
+        (Mandrel::Vessel(v), Some(LayerKind::Hoop)) => {
             let (z1, z2) = v.cylinder_range();
             let cyl = Cylinder::new(v.radius(), z2 - z1)?;
             Ok((Mandrel::Cylinder(cyl), z1))

@@ -21,9 +21,9 @@
 //! not used: the delivery head's rotation follows from the kinematics, the feeds
 //! from the machine's limits.
 
-use formcam_machine::ik::IkMethod;
+use formcam_machine::IkMethod;
 use formcam_machine::shipped::shipped;
-use formcam_winding::job::{EyeJob, MandrelSpec, WindingSpec};
+use formcam_winding::job::{EyeJob, LayerKind, MandrelSpec, WindingSpec};
 use serde_json::{Map, Value};
 
 use crate::ProgramError;
@@ -450,7 +450,7 @@ fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
                 ));
             }
             Ok(WindingSpec {
-                kind: Some("hoop".into()),
+                kind: Some(LayerKind::Hoop),
                 one_way: terminal.then_some(true),
                 ..base.clone()
             })
@@ -511,7 +511,7 @@ fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
                     hoop(&mut l, false)?
                 } else {
                     WindingSpec {
-                        kind: Some("helical".into()),
+                        kind: Some(LayerKind::Helical),
                         winding_angle_deg: Some(wind_angle),
                         pattern_number: Some(h.pattern_number),
                         skip_index: Some(h.skip_index),
@@ -521,7 +521,7 @@ fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
                 }
             }
             "skip" => WindingSpec {
-                kind: Some("skip".into()),
+                kind: Some(LayerKind::Skip),
                 mandrel_rotation_deg: Some(l.required("mandrelRotation")?),
                 ..WindingSpec::default()
             },

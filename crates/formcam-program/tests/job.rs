@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 
-use formcam_machine::ik::IkMethod;
+use formcam_machine::IkMethod;
 use formcam_program::{Layers, MachineSource, ProgramError, Stage, Times, WindJob};
 
 const MANDREL: &str = "[mandrel]\nkind = \"cylinder\"\nradius = 60.0\nlength = 800.0\n";

@@ -9,6 +9,7 @@ use formcam_motion::check_timing;
 use formcam_program::{
     Assembled, EYE_CLEARANCE_MM, ProgramError, WindJob, axis_limits, plan_program,
 };
+use formcam_winding::job::LayerKind;
 
 /// The job (`pairwise 6334.65 s, global 25616.37 s` before the
 /// global times were fixed), its patterns made to divide the layers' circuits
@@ -227,7 +228,7 @@ fn a_program_with_a_skip_layer_keeps_its_limits_across_the_joins() {
     let text = std::fs::read_to_string(examples.join("tube-layers-4axis.toml")).unwrap();
     let j = WindJob::from_toml(&text, &examples).unwrap();
     let p = plan_program(&j).unwrap();
-    assert!(p.layers.iter().any(|l| l.kind == "skip"));
+    assert!(p.layers.iter().any(|l| l.kind == LayerKind::Skip));
     check_program(
         p.program.as_ref().unwrap(),
         &j.machine.as_ref().unwrap().machine,

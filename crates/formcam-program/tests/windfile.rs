@@ -4,6 +4,7 @@
 #![allow(clippy::unwrap_used)]
 
 use formcam_program::{Check, EYE_CLEARANCE_MM, Layers, MachineSource, WindJob};
+use formcam_winding::job::LayerKind;
 use serde_json::{Value, json};
 
 fn read(doc: &Value) -> Result<WindJob, formcam_program::ProgramError> {
@@ -62,7 +63,7 @@ fn a_document_is_a_multi_layer_job_on_the_xab_winder() {
         panic!("not a multi-layer job");
     };
     assert_eq!(layers.len(), 2);
-    assert_eq!(layers[0].kind.as_deref(), Some("hoop"));
+    assert_eq!(layers[0].kind, Some(LayerKind::Hoop));
     assert_eq!(layers[1].winding_angle_deg, Some(41.0));
     let m = j.machine.as_ref().unwrap();
     assert_eq!(m.machine.name, "X/A/B winder");

@@ -8,8 +8,8 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
+use formcam_machine::AxisTrack;
 use formcam_machine::Machine;
-use formcam_machine::ik::AxisTrack;
 use formcam_program::{
     Assembled, Check, MachineSource, ProgramError, Stage, WindJob, Wound, WoundLayer, WoundProgram,
     nc, plan_until, write_program,
@@ -291,7 +291,7 @@ fn layered(
         wound
             .layers
             .iter()
-            .map(|l| l.kind.as_str())
+            .map(|l| l.kind.name())
             .collect::<Vec<_>>()
             .join(" + "),
         m.name,

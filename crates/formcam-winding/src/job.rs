@@ -4,8 +4,11 @@
 //! Fields are optional in the types so that a missing one is reported by its
 //! dotted name (`mandrel.radius`) with what it should be.
 
+use std::fmt;
+use std::str::FromStr;
+
 use formcam_geom::{Cone, Cylinder, DomeShape, GeomError, Jet, Meridian, Tabulated, Vessel};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 use crate::{Ends, LayerSpec, MuSegment, Slippage, TubeTurn, WindingError};
 
@@ -95,12 +98,63 @@ pub struct WindingSpec {
     pub turnaround: Option<String>,
     /// Multi-layer jobs (`[[layer]]`): `helical` (default), `hoop` (tubes: the
     /// band advances one width per turn) or `skip` (the mandrel turns alone).
-    pub kind: Option<String>,
+    pub kind: Option<LayerKind>,
     /// Skip layers: how far the mandrel turns, degrees.
     pub mandrel_rotation_deg: Option<f64>,
     /// Hoop layers: one pass only, ending at the far end (a terminal hoop);
     /// default false (out and back).
     pub one_way: Option<bool>,
+}
+
+/// The kind of a layer (`kind` of a `[[layer]]` table), read by its name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase", try_from = "String")]
+pub enum LayerKind {
+    /// Helical (or polar) circuits, the pattern covering the mandrel.
+    #[default]
+    Helical,
+    /// Hoop winding: the band advances one width per turn.
+    Hoop,
+    /// No band: the mandrel turns alone.
+    Skip,
+}
+
+impl LayerKind {
+    /// The name in job files and messages: `helical`, `hoop`, `skip`.
+    pub fn name(self) -> &'static str {
+        match self {
+            LayerKind::Helical => "helical",
+            LayerKind::Hoop => "hoop",
+            LayerKind::Skip => "skip",
+        }
+    }
+}
+
+impl FromStr for LayerKind {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        [LayerKind::Helical, LayerKind::Hoop, LayerKind::Skip]
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| {
+                format!("kind: \"{s}\" is not a layer kind; allowed: helical, hoop, skip")
+            })
+    }
+}
+
+impl TryFrom<String> for LayerKind {
+    type Error = String;
+
+    fn try_from(s: String) -> Result<Self, String> {
+        s.parse()
+    }
+}
+
+impl fmt::Display for LayerKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.pad(self.name())
+    }
 }
 
 /// One `mu_segments` entry.
@@ -395,9 +449,9 @@ impl WindingSpec {
                 }
             },
         };
-        let hoop = match self.kind.as_deref() {
-            None | Some("helical") => false,
-            Some("hoop") => true,
+        let hoop = match self.kind {
+            None | Some(LayerKind::Helical) => false,
+            Some(LayerKind::Hoop) => true,
             Some(other) => {
                 return Err(WindingError::field(
                     "winding.kind",

@@ -10,7 +10,7 @@ use crate::friction::friction_turns;
 use crate::minimax::{bridging_limit, minimax};
 use crate::path::{PassEnd, TANGENT_ALPHA_TOL, TraceOptions, trace};
 use crate::pattern::{Pattern, PatternRequest, choose_pattern};
-use crate::shooting::shoot;
+use crate::shooting::{Shot, shoot};
 use crate::{MuLaw, MuSegment, PathPoint, WindingError};
 
 /// How the slippage of the path is chosen.
@@ -347,12 +347,104 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
     check_spec(spec, m.z_range())?;
     let tube = matches!(spec.ends, Ends::Tube { .. });
     let friction = spec.turnaround == TubeTurn::Friction;
-    let (za, zb) = m.z_range();
     let mut warnings = Vec::new();
-    let samples = spec.samples.max(2);
+    let mut choice = choose_method(m, spec, friction, &mut warnings)?;
+    let laid = lay_pass(m, spec, friction, &mut choice, &mut warnings)?;
+    let last = *laid
+        .points
+        .last()
+        .ok_or_else(|| WindingError::field("winding.samples", "no points"))?;
+    check_far_end(m, spec, friction, laid.end)?;
+    let turn = pass_turn(m, spec, &laid, &last);
+    let eq = equator(&laid.dense);
+    let pattern = choose_pattern(&PatternRequest {
+        band_width: spec.band_width,
+        overlap: spec.overlap,
+        radius: eq.r,
+        alpha: eq.alpha,
+        natural_turn: 2.0 * turn.total(),
+        dwell_min: 2.0 * spec.dwell_min,
+        pattern_number: spec.pattern_number,
+        skip_index: spec.skip_index,
+    })?;
+    let circuit_len = circuit_length(m, &laid, &last, &pattern, tube);
+    let n = f64::from(pattern.circuits);
+    let (thickness, thickness_max) = thickness(m, spec, &laid, &eq, n, !tube || friction);
+    let pass = pass_summary(m, &choice, &laid, &last, &turn);
+    let report = layer_report(spec, &eq, &turn, &pattern, circuit_len, thickness_max);
+    Ok(Layer {
+        points: laid.points,
+        thickness,
+        pass,
+        pattern,
+        report,
+        warnings,
+        pass_path: laid.pass_path,
+        tube,
+    })
+}
+
+/// The method chosen for a layer, the slippage law and start angle of its pass.
+struct Choice {
+    method: Method,
+    law: MuLaw,
+    /// Winding angle at `z_start`, rad.
+    alpha0: f64,
+    /// The shot pass of `mu = "auto"`.
+    shot: Option<Shot>,
+    /// The minimax search's figures.
+    minimax: Option<MinimaxFigures>,
+}
+
+/// What the minimax search reports besides its path.
+struct MinimaxFigures {
+    /// The worst `|mu|` of the path laid.
+    mu_path: f64,
+    /// The least worst-case `|mu|` of any path.
+    mu_max: f64,
+    /// `z` intervals (mm) where the bridging limit is active.
+    bridging_active: Vec<(f64, f64)>,
+}
+
+/// The pass laid: the dense sampling behind the report, the points asked for,
+/// the pass for evaluation anywhere and its ends.
+struct Laid {
+    dense: Vec<PathPoint>,
+    points: Vec<PathPoint>,
+    pass_path: PassPath,
+    start: PassEnd,
+    end: PassEnd,
+}
+
+/// Turn angles of one pass and its fibre length.
+struct PassTurn {
+    /// On the mandrel's surface, rad.
+    surface: f64,
+    /// Added at polar bosses where the path leaves the meridian below 90°, rad.
+    boss: f64,
+    /// Fibre length of the pass, the bosses' faces included, mm.
+    length: f64,
+}
+
+impl PassTurn {
+    /// The turn of one pass, boss included, rad.
+    fn total(&self) -> f64 {
+        self.surface + self.boss
+    }
+}
+
+/// Chooses the method from the slippage asked for and the pass's ends: the law
+/// and the start angle, shooting `mu = "auto"` (minimax where no constant
+/// slippage turns at both ends) and a tube's friction turns.
+fn choose_method<M: Meridian>(
+    m: &M,
+    spec: &LayerSpec,
+    friction: bool,
+    warnings: &mut Vec<String>,
+) -> Result<Choice, WindingError> {
+    let (za, _) = m.z_range();
     let mut shot = None;
-    let mut minimax_info = None;
-    let (mut method, law, alpha0) = match (&spec.slippage, spec.ends) {
+    let (method, law, alpha0) = match (&spec.slippage, spec.ends) {
         (Slippage::Constant(mu), Ends::Tube { winding_angle }) if friction => {
             let turns = friction_turns(m, *mu, winding_angle, spec.mu_limit)?;
             (Method::FrictionTurn, turns.law, FRAC_PI_2)
@@ -419,81 +511,139 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
             (Method::Minimax, MuLaw::Constant(0.0), FRAC_PI_2)
         }
     };
+    Ok(Choice {
+        method,
+        law,
+        alpha0,
+        shot,
+        minimax: None,
+    })
+}
 
-    // `dense` drives every figure of the report; `points` are what the user asked for.
-    let mut dense = Vec::new();
-    let mut points = Vec::new();
-    let mut pass_path = PassPath::Points(Vec::new());
-    let mut start = PassEnd::TurnAround { z: za };
-    let mut end = PassEnd::TurnAround { z: zb };
-    if method != Method::Minimax {
-        let tr = match &shot {
-            Some(s) => s.trace.clone(),
-            None if friction => {
-                // A tighter tolerance than a plain pass: the far turn must land on
-                // the tube's end, which the error gathered over the pass would move.
-                let mut opts = TraceOptions::default();
-                opts.tol.rtol = 3e-15;
-                opts.tol.atol = 3e-15;
-                trace(m, &law, alpha0, &opts)?
-            }
-            None => trace(m, &law, alpha0, &TraceOptions::default())?,
+/// Lays the pass of the chosen method: traced (and checked for bridging, where
+/// `mu = "auto"` falls back to minimax) or the minimax search's path.
+fn lay_pass<M: Meridian>(
+    m: &M,
+    spec: &LayerSpec,
+    friction: bool,
+    choice: &mut Choice,
+    warnings: &mut Vec<String>,
+) -> Result<Laid, WindingError> {
+    if choice.method != Method::Minimax {
+        let laid = traced_pass(m, spec, friction, choice)?;
+        let (_, bad) = bridging_margin(m, &laid.dense);
+        let Some(zbad) = bad else {
+            return Ok(laid);
         };
-        dense = tr.sample(m, &law, samples.max(DENSE));
-        points = if samples >= DENSE {
-            dense.clone()
+        if spec.slippage != Slippage::Auto {
+            return Err(WindingError::infeasible(
+                "winding.mu",
+                format!(
+                    "the band bridges (lifts off the concave surface) at z = {zbad:.3} mm; \
+                     use mu = \"minimax\""
+                ),
+            ));
+        }
+        warnings.push(format!(
+            "the constant-mu path bridges the concave meridian at z = {zbad:.3} mm; the minimax \
+             search was used instead"
+        ));
+        choice.method = Method::Minimax;
+    }
+    minimax_pass(m, spec, choice)
+}
+
+/// The pass traced in path length (the shot pass of `auto` as it is), sampled
+/// densely for the report and as the job asks.
+fn traced_pass<M: Meridian>(
+    m: &M,
+    spec: &LayerSpec,
+    friction: bool,
+    choice: &Choice,
+) -> Result<Laid, WindingError> {
+    let (za, _) = m.z_range();
+    let samples = spec.samples.max(2);
+    let law = &choice.law;
+    let tr = match &choice.shot {
+        Some(s) => s.trace.clone(),
+        None if friction => {
+            // A tighter tolerance than a plain pass: the far turn must land on
+            // the tube's end, which the error gathered over the pass would move.
+            let mut opts = TraceOptions::default();
+            opts.tol.rtol = 3e-15;
+            opts.tol.atol = 3e-15;
+            trace(m, law, choice.alpha0, &opts)?
+        }
+        None => trace(m, law, choice.alpha0, &TraceOptions::default())?,
+    };
+    let dense = tr.sample(m, law, samples.max(DENSE));
+    let points = if samples >= DENSE {
+        dense.clone()
+    } else {
+        tr.sample(m, law, samples)
+    };
+    let start = if choice.alpha0 < FRAC_PI_2 {
+        PassEnd::Exit {
+            z: za,
+            alpha: choice.alpha0,
+        }
+    } else {
+        PassEnd::TurnAround { z: za }
+    };
+    let end = tr.end;
+    Ok(Laid {
+        dense,
+        points,
+        pass_path: PassPath::Traced(tr),
+        start,
+        end,
+    })
+}
+
+/// The minimax search's pass (eqs. 5–6), turning at both openings; notes its
+/// slippage figures in `choice` and drops the shot pass.
+fn minimax_pass<M: Meridian>(
+    m: &M,
+    spec: &LayerSpec,
+    choice: &mut Choice,
+) -> Result<Laid, WindingError> {
+    let (za, zb) = m.z_range();
+    let mm = minimax(m, spec.minimax_nodes, spec.mu_limit).map_err(|e| {
+        if spec.slippage == Slippage::Auto && choice.shot.is_none() {
+            WindingError::Shooting(format!(
+                "no constant slippage within mu_limit = {} meets both polar openings, and {e}",
+                spec.mu_limit
+            ))
         } else {
-            tr.sample(m, &law, samples)
-        };
-        if alpha0 < FRAC_PI_2 {
-            start = PassEnd::Exit {
-                z: za,
-                alpha: alpha0,
-            };
+            e
         }
-        end = tr.end;
-        pass_path = PassPath::Traced(tr);
-        let (_, bad) = bridging_margin(m, &dense);
-        if let Some(zbad) = bad {
-            if spec.slippage == Slippage::Auto {
-                warnings.push(format!(
-                    "the constant-mu path bridges the concave meridian at z = {zbad:.3} mm; the minimax \
-                     search was used instead"
-                ));
-                method = Method::Minimax;
-            } else {
-                return Err(WindingError::infeasible(
-                    "winding.mu",
-                    format!(
-                        "the band bridges (lifts off the concave surface) at z = {zbad:.3} mm; \
-                         use mu = \"minimax\""
-                    ),
-                ));
-            }
-        }
-    }
-    if method == Method::Minimax {
-        let mm = minimax(m, spec.minimax_nodes, spec.mu_limit).map_err(|e| {
-            if spec.slippage == Slippage::Auto && shot.is_none() {
-                WindingError::Shooting(format!(
-                    "no constant slippage within mu_limit = {} meets both polar openings, and {e}",
-                    spec.mu_limit
-                ))
-            } else {
-                e
-            }
-        })?;
-        dense = mm.points(m);
-        points = resample(&dense, samples);
-        pass_path = PassPath::Points(dense.clone());
-        start = PassEnd::TurnAround { z: za };
-        end = PassEnd::TurnAround { z: zb };
-        minimax_info = Some((mm.mu_path, mm.mu_max, mm.bridging_active));
-        shot = None;
-    }
-    let last = *points
-        .last()
-        .ok_or_else(|| WindingError::field("winding.samples", "no points"))?;
+    })?;
+    let dense = mm.points(m);
+    let points = resample(&dense, spec.samples.max(2));
+    choice.minimax = Some(MinimaxFigures {
+        mu_path: mm.mu_path,
+        mu_max: mm.mu_max,
+        bridging_active: mm.bridging_active,
+    });
+    choice.shot = None;
+    Ok(Laid {
+        pass_path: PassPath::Points(dense.clone()),
+        dense,
+        points,
+        start: PassEnd::TurnAround { z: za },
+        end: PassEnd::TurnAround { z: zb },
+    })
+}
+
+/// Checks that the pass ends where the mandrel asks: at a tube's end, at the far
+/// polar opening (not before it, not leaving the mandrel there).
+fn check_far_end<M: Meridian>(
+    m: &M,
+    spec: &LayerSpec,
+    friction: bool,
+    end: PassEnd,
+) -> Result<(), WindingError> {
+    let (_, zb) = m.z_range();
     match (spec.ends, end) {
         (Ends::Tube { .. }, PassEnd::TurnAround { z })
             if friction && (z - zb).abs() <= FAR_TOL_MM => {}
@@ -538,15 +688,20 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         }
         _ => {}
     }
+    Ok(())
+}
 
-    // Turn angles.
-    let surface_turn = last.v;
-    let boss = if matches!(spec.ends, Ends::Poles { .. }) {
+/// The turn angles of one pass (on the surface, and at polar bosses where the
+/// path leaves the meridian below 90°) and its length with the bosses' faces.
+fn pass_turn<M: Meridian>(m: &M, spec: &LayerSpec, laid: &Laid, last: &PathPoint) -> PassTurn {
+    let (za, zb) = m.z_range();
+    let poles = matches!(spec.ends, Ends::Poles { .. });
+    let boss = if poles {
         let mut b = 0.0;
-        if let PassEnd::Exit { alpha, .. } = start {
+        if let PassEnd::Exit { alpha, .. } = laid.start {
             b += FRAC_PI_2 - alpha;
         }
-        if let PassEnd::Exit { alpha, .. } = end {
+        if let PassEnd::Exit { alpha, .. } = laid.end {
             b += FRAC_PI_2 - alpha;
         }
         b
@@ -554,21 +709,25 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         0.0
     };
     let boss_len = |pe: &PassEnd, r: f64| match pe {
-        PassEnd::Exit { alpha, .. } if matches!(spec.ends, Ends::Poles { .. }) => r * alpha.cos(),
+        PassEnd::Exit { alpha, .. } if poles => r * alpha.cos(),
         _ => 0.0,
     };
-    let pass_len = last.s + boss_len(&start, m.r(za)) + boss_len(&end, m.r(zb));
-    let turn_pass = surface_turn + boss;
-    let turn_circuit = 2.0 * turn_pass;
+    PassTurn {
+        surface: last.v,
+        boss,
+        length: last.s + boss_len(&laid.start, m.r(za)) + boss_len(&laid.end, m.r(zb)),
+    }
+}
 
-    // Equator and pattern: the widest parallel, or, where the pass turns on it
-    // (a tube turned by friction, a shell whose ends flare), the parallel the
-    // bands cross most widely (largest r cos(alpha)), which the pattern must cover.
+/// The parallel the pattern must cover: the widest, or, where the pass turns on
+/// it (a tube turned by friction, a shell whose ends flare), the parallel the
+/// bands cross most widely (largest `r cos(alpha)`).
+fn equator(dense: &[PathPoint]) -> PathPoint {
     let widest = dense
         .iter()
         .copied()
         .fold(dense[0], |a, p| if p.r > a.r { p } else { a });
-    let eq = if widest.alpha >= FRAC_PI_2 - TANGENT_ALPHA_TOL {
+    if widest.alpha >= FRAC_PI_2 - TANGENT_ALPHA_TOL {
         let across = |p: &PathPoint| p.r * p.alpha.cos();
         dense
             .iter()
@@ -576,37 +735,50 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
             .fold(dense[0], |a, p| if across(&p) > across(&a) { p } else { a })
     } else {
         widest
-    };
-    let pattern = choose_pattern(&PatternRequest {
-        band_width: spec.band_width,
-        overlap: spec.overlap,
-        radius: eq.r,
-        alpha: eq.alpha,
-        natural_turn: turn_circuit,
-        dwell_min: 2.0 * spec.dwell_min,
-        pattern_number: spec.pattern_number,
-        skip_index: spec.skip_index,
-    })?;
-    let n = f64::from(pattern.circuits);
-    // The turn-arounds of the circuit (see `circuit`): the band laid while the
-    // mandrel dwells, and at a boss the rest of the turn.
-    let dwell_end = 0.5 * pattern.dwell_rad;
-    let far = Turnaround::new(m, &end, dwell_end, tube, true);
-    let near = Turnaround::new(m, &start, dwell_end, tube, false);
-    let circuit_len = 2.0 * last.s + far.length() + near.length();
+    }
+}
 
-    // Thickness along the meridian: two plies, n bands of width b across a parallel
-    // of circumference 2 pi r at angle alpha. Near a turn-around cos(alpha) -> 0 and the
-    // formula diverges; within one band width of the turn radius it is held at its
-    // value one band width out (tubes have no turn-around on the mandrel).
-    let t_at = |r: f64, alpha: f64| {
-        2.0 * spec.band_thickness * n * spec.band_width / (TAU * r * alpha.cos().max(1e-12))
-    };
+/// The band length of one circuit: two passes and the turn-arounds (see
+/// `circuit`: the band laid while the mandrel dwells, and at a boss the rest of
+/// the turn).
+fn circuit_length<M: Meridian>(
+    m: &M,
+    laid: &Laid,
+    last: &PathPoint,
+    pattern: &Pattern,
+    tube: bool,
+) -> f64 {
+    let dwell_end = 0.5 * pattern.dwell_rad;
+    let far = Turnaround::new(m, &laid.end, dwell_end, tube, true);
+    let near = Turnaround::new(m, &laid.start, dwell_end, tube, false);
+    2.0 * last.s + far.length() + near.length()
+}
+
+/// Layer thickness of two plies, `n` bands of width `b` across a parallel of
+/// circumference `2 pi r` at angle `alpha`, mm.
+fn ply_thickness(spec: &LayerSpec, n: f64, r: f64, alpha: f64) -> f64 {
+    2.0 * spec.band_thickness * n * spec.band_width / (TAU * r * alpha.cos().max(1e-12))
+}
+
+/// The thickness at the points asked for and the largest along the dense pass.
+/// Near a turn-around `cos(alpha) -> 0` and the formula diverges: within one
+/// band width of the turn radius it is held at its value one band width out
+/// (`turns_on_mandrel`: false for a tube turned beyond its ends).
+fn thickness<M: Meridian>(
+    m: &M,
+    spec: &LayerSpec,
+    laid: &Laid,
+    eq: &PathPoint,
+    n: f64,
+    turns_on_mandrel: bool,
+) -> (Vec<f64>, f64) {
+    let (za, zb) = m.z_range();
+    let dense = &laid.dense;
     // The cap of each end: the thickness where the path first (from that end) is a
     // band width above its turn radius, held constant towards the turn; where the
     // meridian does not narrow towards the end (a tube turned by friction, a
     // flaring end), where the path is a band width from the turn along the meridian.
-    let full = |p: &PathPoint| t_at(p.r, p.alpha);
+    let full = |p: &PathPoint| ply_thickness(spec, n, p.r, p.alpha);
     let cap_of = |mut it: Box<dyn Iterator<Item = &PathPoint> + '_>, narrows: bool| {
         let first = it.next().copied()?;
         if narrows {
@@ -617,7 +789,6 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
                 .map(|p| (p.z, full(p)))
         }
     };
-    let turns_on_mandrel = !tube || friction;
     let start_cap = if turns_on_mandrel {
         cap_of(Box::new(dense.iter()), m.dr(za) > 0.0)
     } else {
@@ -633,54 +804,74 @@ pub fn plan_layer<M: Meridian>(m: &M, spec: &LayerSpec) -> Result<Layer, Winding
         (_, Some((z, t))) if p.z > z => t,
         _ => full(p),
     };
-    let thickness: Vec<f64> = points.iter().map(thick).collect();
+    let thickness: Vec<f64> = laid.points.iter().map(thick).collect();
     let thickness_max = dense.iter().map(thick).fold(0.0, f64::max);
+    (thickness, thickness_max)
+}
 
-    let (mu_const, mu_max_abs) = match (method, &law) {
-        (Method::Minimax, _) => (None, minimax_info.as_ref().map_or(0.0, |x| x.0)),
+/// What the pass is: method, slippage, ends, length, turn angles, the shooting
+/// and minimax figures, the margin to the bridging limit.
+fn pass_summary<M: Meridian>(
+    m: &M,
+    choice: &Choice,
+    laid: &Laid,
+    last: &PathPoint,
+    turn: &PassTurn,
+) -> PassSummary {
+    let (mu, mu_max_abs) = match (choice.method, &choice.law) {
+        (Method::Minimax, _) => (None, choice.minimax.as_ref().map_or(0.0, |x| x.mu_path)),
         (_, MuLaw::Constant(mu)) => (Some(*mu), mu.abs()),
         (_, l) => (None, l.max_abs()),
     };
-    let (bridging_margin_mm, _) = bridging_margin(m, &dense);
-    let pass = PassSummary {
-        method,
-        mu: mu_const,
+    let (bridging_margin_mm, _) = bridging_margin(m, &laid.dense);
+    let shot = choice.shot.as_ref();
+    PassSummary {
+        method: choice.method,
+        mu,
         mu_max_abs,
-        mu_optimal: minimax_info.as_ref().map(|x| x.1),
-        start,
-        end,
+        mu_optimal: choice.minimax.as_ref().map(|x| x.mu_max),
+        start: laid.start,
+        end: laid.end,
         length_mm: last.s,
-        turn_angle_surface_rad: surface_turn,
-        turn_angle_boss_rad: boss,
-        boundary_residual_mm: shot.as_ref().map(|s| s.residual_mm),
-        shooting_evaluations: shot.as_ref().map(|s| s.evaluations),
-        bridging_active: minimax_info.map(|x| x.2).unwrap_or_default(),
+        turn_angle_surface_rad: turn.surface,
+        turn_angle_boss_rad: turn.boss,
+        boundary_residual_mm: shot.map(|s| s.residual_mm),
+        shooting_evaluations: shot.map(|s| s.evaluations),
+        bridging_active: choice
+            .minimax
+            .as_ref()
+            .map(|x| x.bridging_active.clone())
+            .unwrap_or_default(),
         bridging_margin_mm,
-    };
-    let report = LayerReport {
+    }
+}
+
+/// The layer report: equator, turn angles with and without dwell, lengths,
+/// thickness.
+fn layer_report(
+    spec: &LayerSpec,
+    eq: &PathPoint,
+    turn: &PassTurn,
+    pattern: &Pattern,
+    circuit_len: f64,
+    thickness_max: f64,
+) -> LayerReport {
+    let n = f64::from(pattern.circuits);
+    let turn_circuit = 2.0 * turn.total();
+    LayerReport {
         alpha_equator_rad: eq.alpha,
         z_equator: eq.z,
-        turn_angle_pass_rad: turn_pass,
+        turn_angle_pass_rad: turn.total(),
         turn_angle_circuit_rad: turn_circuit,
         turn_angle_circuit_with_dwell_rad: turn_circuit + pattern.dwell_rad,
         dwell_deg: pattern.dwell_rad.to_degrees(),
         dwell_per_turnaround_deg: 0.5 * pattern.dwell_rad.to_degrees(),
-        pass_length_mm: pass_len,
+        pass_length_mm: turn.length,
         circuit_length_mm: circuit_len,
         fibre_length_mm: n * circuit_len,
-        thickness_equator_mm: t_at(eq.r, eq.alpha),
+        thickness_equator_mm: ply_thickness(spec, n, eq.r, eq.alpha),
         thickness_max_mm: thickness_max,
-    };
-    Ok(Layer {
-        points,
-        thickness,
-        pass,
-        pattern,
-        report,
-        warnings,
-        pass_path,
-        tube,
-    })
+    }
 }
 
 /// `n` points evenly spaced in path length, interpolated linearly between the

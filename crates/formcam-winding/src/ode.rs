@@ -66,7 +66,7 @@ const D7: f64 = 69997945.0 / 29380423.0;
 
 /// One accepted step with its continuous extension (4th order).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Step<const N: usize> {
+pub(crate) struct Step<const N: usize> {
     /// Start of the step.
     pub t0: f64,
     /// Length of the step.
@@ -182,7 +182,7 @@ fn trial<const N: usize, F: FnMut(f64, &[f64; N]) -> [f64; N]>(
 }
 
 /// What the observer wants after each accepted step.
-pub enum Control {
+pub(crate) enum Control {
     /// Go on.
     Continue,
     /// Stop now; the last step stays the last.
@@ -193,7 +193,7 @@ pub enum Control {
 
 /// Why an integration ended.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Outcome {
+pub(crate) enum Outcome {
     /// The observer stopped it.
     Stopped,
     /// Reached `t_end`.
@@ -205,7 +205,7 @@ pub enum Outcome {
 }
 
 /// An adaptive integrator from `t0` towards `t_end`.
-pub struct Integrator<const N: usize, F> {
+pub(crate) struct Integrator<const N: usize, F> {
     f: F,
     tol: Tolerance,
 }
@@ -295,7 +295,7 @@ pub fn find_root(mut g: impl FnMut(f64) -> f64, a: f64, b: f64, xtol: f64, ftol:
 }
 
 /// [`find_root`] with `g` already known at both ends of the bracket.
-pub fn find_root_known(
+pub(crate) fn find_root_known(
     mut g: impl FnMut(f64) -> f64,
     (mut a, mut fa): (f64, f64),
     (mut b, mut fb): (f64, f64),

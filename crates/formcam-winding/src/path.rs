@@ -261,7 +261,7 @@ pub fn trace<M: Meridian>(
 /// is tangent there: it turns within a hair (`r - C < 5e-9 r`), not exits. Near a
 /// turn-around `pi/2 - alpha` grows as the square root of the distance, so a
 /// converged shot meets the end with `pi/2 - alpha` about 1e-5.
-pub const TANGENT_ALPHA_TOL: f64 = 1e-4;
+pub(crate) const TANGENT_ALPHA_TOL: f64 = 1e-4;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Event {

@@ -9,11 +9,11 @@ use common::{Waist, vessel};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use formcam_geom::{Cone, Cylinder, DomeShape, Meridian, Mirrored, Vessel};
-use formcam_winding::minimax::{b_factor, bridging_limit};
 use formcam_winding::{
     Ends, LayerSpec, Method, MuLaw, PassEnd, Slippage, TraceOptions, minimax, plan_layer, shoot,
     trace,
 };
+use formcam_winding::{b_factor, bridging_limit};
 
 #[test]
 fn cylinder_geodesic_is_a_helix() {
@@ -62,8 +62,7 @@ fn hemisphere_vessel_circuit_turns_two_pi_plus_helix() {
     let h = (100.0f64 * 100.0 - 900.0).sqrt();
     let law = MuLaw::Constant(0.0);
     let tr = trace(&v, &law, FRAC_PI_2, &TraceOptions::default()).unwrap();
-    let s_in =
-        formcam_winding::ode::find_root(|s| tr.state_at(s)[0] - h, 0.0, tr.length(), 1e-13, 0.0);
+    let s_in = formcam_winding::find_root(|s| tr.state_at(s)[0] - h, 0.0, tr.length(), 1e-13, 0.0);
     assert!((tr.state_at(s_in)[1] - FRAC_PI_2).abs() < 1e-8);
     // A sphere (no cylinder): half a great circle per pass.
     let sphere = Vessel::new(
@@ -218,13 +217,8 @@ fn shooting_meets_both_openings_from_either_end() {
         .filter(|p| p.z > 1.0 && p.z < v.z_end() - 1.0)
     {
         let zt = total - p.z;
-        let s = formcam_winding::ode::find_root(
-            |s| tb.state_at(s)[0] - zt,
-            0.0,
-            tb.length(),
-            1e-13,
-            0.0,
-        );
+        let s =
+            formcam_winding::find_root(|s| tb.state_at(s)[0] - zt, 0.0, tb.length(), 1e-13, 0.0);
         let y = tb.state_at(s);
         let c_b = mb.r(y[0]) * y[2].sin();
         assert!(
@@ -449,7 +443,7 @@ fn clairaut_quadrature_through_the_turn_arounds() {
             .collect();
         let c = vec![30.0; n + 1];
         let mu = vec![0.0; n + 1];
-        let pts = formcam_winding::minimax::clairaut_points(&v, &z, &c, &mu);
+        let pts = formcam_winding::clairaut_points(&v, &z, &c, &mu);
         let expect = PI + 300.0 * 0.3f64.asin().tan() / 100.0;
         let err = pts.last().unwrap().v - expect;
         eprintln!("n = {n}: turn angle error {err:e}");

@@ -8,7 +8,9 @@ use std::f64::consts::PI;
 
 use common::vessel;
 use formcam_geom::{Cylinder, Meridian};
-use formcam_winding::eye::{EyeMode, EyeSpec, axis_parallel_length, eye_at, eye_trajectory};
+use formcam_winding::eye::{
+    Constraint, EyeMode, EyeSpec, axis_parallel_length, eye_at, eye_trajectory,
+};
 use formcam_winding::{Circuit, Ends, LayerSpec, Slippage, plan_layer};
 
 fn tube_layer(m: &dyn Meridian, deg: f64) -> formcam_winding::Layer {
@@ -401,9 +403,46 @@ fn long_trajectories_agree_point_by_point_with_the_closed_forms() {
     let reported = eye
         .violations
         .iter()
-        .find(|v| v.constraint == "slack")
+        .find(|v| v.constraint == Constraint::Slack)
         .map_or(0, |v| v.count);
     // Axis-parallel slackens the band near the turn-arounds here.
     assert!(slack > 0);
     assert_eq!(reported, slack);
+}
+
+/// A long geometric trajectory is built in runs on rayon's pool: with four
+/// workers (four runs) it is the trajectory of one worker (one run), point for
+/// point to rounding, with the same statistics and constraints.
+#[test]
+fn runs_on_the_pool_build_the_trajectory_of_one_run() {
+    let v = vessel(30.0, 30.0);
+    let layer = vessel_layer(&v);
+    let spec = EyeSpec {
+        mode: EyeMode::Equidistant,
+        clearance: 15.0,
+        l_max: 600.0,
+        samples: 80_001,
+        ..EyeSpec::default()
+    };
+    let on = |workers: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(workers)
+            .build()
+            .unwrap();
+        pool.install(|| eye_trajectory(&v, &layer, &spec)).unwrap()
+    };
+    let (one, four) = (on(1), on(4));
+    assert_eq!(one.points.len(), four.points.len());
+    for (a, b) in one.points.iter().zip(&four.points) {
+        assert!((a.l - b.l).abs() < 1e-9, "x = {}: {} vs {}", a.x, a.l, b.l);
+        assert!((a.u - b.u).abs() < 1e-6, "x = {}: {} vs {}", a.x, a.u, b.u);
+    }
+    assert_eq!(one.violations.len(), four.violations.len());
+    for (a, b) in one.violations.iter().zip(&four.violations) {
+        assert_eq!((a.constraint, a.count), (b.constraint, b.count));
+    }
+    assert_eq!(one.constraints_ok, four.constraints_ok);
+    assert!((one.stats.u_min - four.stats.u_min).abs() < 1e-6);
+    assert!((one.stats.u_max - four.stats.u_max).abs() < 1e-6);
+    assert!((one.stats.u_rms_dev - four.stats.u_rms_dev).abs() < 1e-9);
 }

@@ -8,11 +8,11 @@ mod common;
 use common::{Flare, Parabola};
 
 use formcam_geom::{Cone, Cylinder, Jet, Meridian};
-use formcam_winding::job::{Mandrel, MandrelSpec, MuField, WindingSpec};
-use formcam_winding::minimax::{b_factor, bridging_limit};
+use formcam_winding::job::{LayerKind, Mandrel, MandrelSpec, MuField, WindingSpec};
 use formcam_winding::{
     Ends, LayerSpec, Method, PassEnd, Slippage, TubeTurn, friction_turns, minimax, plan_layer,
 };
+use formcam_winding::{b_factor, bridging_limit};
 
 fn poles<M: Meridian>(m: &M, slippage: Slippage) -> LayerSpec {
     let (za, zb) = m.z_range();
@@ -411,7 +411,7 @@ fn the_job_turns_tubes_by_friction() {
         ),
         (
             WindingSpec {
-                kind: Some("hoop".into()),
+                kind: Some(LayerKind::Hoop),
                 winding_angle_deg: None,
                 ..winding.clone()
             },

@@ -3,7 +3,7 @@
 #![allow(clippy::unwrap_used)]
 
 use formcam_geom::Meridian;
-use formcam_winding::job::MandrelSpec;
+use formcam_winding::job::{LayerKind, MandrelSpec, WindingSpec};
 
 #[test]
 fn grown_mandrels_are_wider_by_the_thickness() {
@@ -50,4 +50,43 @@ fn grown_mandrels_are_wider_by_the_thickness() {
     for z in [0.0, 50.0, 100.0, 150.0, 200.0] {
         assert!((p1.r(z) - p0.r(z) - 1.5).abs() < 1e-9, "z = {z}");
     }
+}
+
+/// A layer's `kind` is read as a `LayerKind` under its name; another word is
+/// refused as the table is read, naming the allowed ones; a skip layer is not
+/// something `layer_spec` plans.
+#[test]
+fn layer_kinds_are_read_by_name() {
+    for kind in [LayerKind::Helical, LayerKind::Hoop, LayerKind::Skip] {
+        let w: WindingSpec = toml::from_str(&format!("kind = \"{kind}\"")).unwrap();
+        assert_eq!(w.kind, Some(kind));
+    }
+    let none: WindingSpec = toml::from_str("band_width = 6.0").unwrap();
+    assert_eq!(none.kind.unwrap_or_default(), LayerKind::Helical);
+    let e = toml::from_str::<WindingSpec>("kind = \"spiral\"")
+        .unwrap_err()
+        .to_string();
+    for allowed in ["kind", "spiral", "helical", "hoop", "skip"] {
+        assert!(e.contains(allowed), "{e}");
+    }
+    let none = |_: &str| -> Result<String, String> { Err("no files".into()) };
+    let cyl = MandrelSpec {
+        kind: Some("cylinder".into()),
+        radius: Some(50.0),
+        length: Some(100.0),
+        ..MandrelSpec::default()
+    }
+    .build(none)
+    .unwrap();
+    let skip = WindingSpec {
+        kind: Some(LayerKind::Skip),
+        band_width: Some(6.0),
+        band_thickness: Some(0.25),
+        winding_angle_deg: Some(45.0),
+        ..WindingSpec::default()
+    };
+    assert_eq!(
+        skip.layer_spec(&cyl).unwrap_err().to_string(),
+        "winding.kind: \"skip\" is not a layer kind here (helical or hoop)"
+    );
 }

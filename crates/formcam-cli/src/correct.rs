@@ -8,13 +8,13 @@ use std::path::{Path, PathBuf};
 
 use formcam_correct::{
     CorrectionJob, DEFAULT_ARC_TOLERANCE_MM, DEFAULT_MAX_DEVIATION_MM, Interpolation, Options,
-    ScenarioJob, Settings, Tool,
+    Settings, Tool,
 };
 use formcam_nc::Dialect;
-use formcam_run::{History, RunError, RunOutput};
+use formcam_run::{History, JobKind, RunOutput};
 
 use crate::CliError;
-use crate::output::write_all;
+use crate::output::{write_all, write_run};
 
 /// Options of `formcam correct`.
 #[derive(Debug, clap::Args)]
@@ -78,14 +78,12 @@ pub struct CorrectArgs {
     pub max_deviation: f64,
 }
 
-impl From<RunError> for CliError {
-    fn from(e: RunError) -> Self {
-        CliError(e.to_string())
-    }
-}
-
 fn read_text(path: &Path) -> Result<String, CliError> {
-    fs::read_to_string(path).map_err(|e| CliError(format!("{}: cannot read: {e}", path.display())))
+    fs::read_to_string(path).map_err(|source| CliError::Read {
+        path: path.to_path_buf(),
+        what: "",
+        source,
+    })
 }
 
 /// `path` made absolute through its folder (the file itself need not exist).
@@ -107,44 +105,33 @@ fn same_file(a: &Path, b: &Path) -> bool {
     }
 }
 
-/// Writes a run's files into `dir`.
-fn write_run(dir: &Path, run: &RunOutput) -> Result<(), CliError> {
-    let files: Vec<(&str, Vec<u8>)> = run
-        .files
-        .iter()
-        .map(|f| (f.name.as_str(), f.bytes.clone()))
-        .collect();
-    write_all(dir, &files)
-}
-
 /// Runs `formcam correct` (a job file, or the options on the command line);
 /// returns the one-line summary.
 pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
     let Some(job) = &a.job else {
         return run_args(a);
     };
-    let out = a.output.clone().ok_or_else(|| {
-        CliError(format!(
-            "correct {}: give -o OUTDIR (the folder for the corrected program, report.json and the plots)",
-            job.display()
-        ))
-    })?;
+    let out = a
+        .output
+        .clone()
+        .ok_or_else(|| CliError::CorrectJobNeedsOutput { job: job.clone() })?;
     let text = read_text(job)?;
-    run_job_text(job, &text, &out)
+    let done = formcam_run::correct_job(job, &text, &out)?;
+    guard_job(job, &text, &out, &done)?;
+    write_run(&out, &done)?;
+    Ok(done.line)
 }
 
 /// Runs `formcam correct` with the options on the command line.
 fn run_args(a: &CorrectArgs) -> Result<String, CliError> {
-    let need = |p: &Option<PathBuf>, flag: &str| {
-        p.clone()
-            .ok_or_else(|| CliError(format!("correct: give {flag} (see formcam correct --help)")))
-    };
+    let need =
+        |p: &Option<PathBuf>, flag: &'static str| p.clone().ok_or(CliError::CorrectNeeds { flag });
     let meas_path = need(&a.measurements, "--measurements cmm.csv")?;
     let prog_path = need(&a.program, "--program mould.nc")?;
     let out_path = need(&a.output, "-o corrected.nc")?;
     guard_outputs(&meas_path, &prog_path, &out_path, a.report.as_deref())?;
     let dialect = match &a.dialect {
-        Some(d) => Some(Dialect::from_name(d).map_err(|e| CliError(format!("--dialect: {e}")))?),
+        Some(d) => Some(Dialect::from_name(d).map_err(CliError::Dialect)?),
         None => None,
     };
     let job = CorrectionJob {
@@ -184,7 +171,7 @@ fn run_args(a: &CorrectArgs) -> Result<String, CliError> {
         let name = rp
             .file_name()
             .map(|f| f.to_string_lossy().into_owned())
-            .ok_or_else(|| CliError(format!("{}: not a file name", rp.display())))?;
+            .ok_or_else(|| CliError::NotFileName { path: rp.clone() })?;
         write_all(&formcam_run::output_folder(rp), &[(name, report)])?;
     }
     Ok(done.run.line)
@@ -201,73 +188,67 @@ fn guard_outputs(
     if let Some(r) = report {
         outputs.push(("--report", r));
     }
-    for (flag, o) in &outputs {
+    for (flag, o) in outputs {
         for (what, input) in [("program", program), ("measurements", measurements)] {
             if same_file(o, input) {
-                return Err(CliError(format!(
-                    "{}: {flag} would overwrite the input {what}; give another {flag}",
-                    o.display()
-                )));
+                return Err(CliError::Refused {
+                    path: o.to_path_buf(),
+                    flag,
+                    what,
+                });
             }
         }
     }
     if let Some(r) = report
         && same_file(r, output)
     {
-        return Err(CliError(format!(
-            "{}: --report and -o are the same file; give another --report",
-            r.display()
-        )));
+        return Err(CliError::SameReport {
+            path: r.to_path_buf(),
+        });
     }
     Ok(())
 }
 
-/// Whether a TOML table is a correction job (it has `[correct]`).
-pub fn is_job(table: &toml::Table) -> bool {
-    CorrectionJob::is_job(table)
-}
-
-/// Runs a correction job file into `out` (`corrected.<ext>`, `report.json`,
-/// the plots).
-pub fn run_job_text(path: &Path, text: &str, out: &Path) -> Result<String, CliError> {
-    let done = formcam_run::correct_job(path, text, out)?;
+/// No result file of the correction job at `path` (text `text`), written
+/// into `out`, may land on the job's program or measurements.
+fn guard_job(path: &Path, text: &str, out: &Path, done: &RunOutput) -> Result<(), CliError> {
     // The job was read by the run, so it reads here too.
     let base = path.parent().unwrap_or(Path::new("."));
-    if let Ok(job) = CorrectionJob::from_toml(text, base) {
-        for f in &done.files {
-            let o = out.join(&f.name);
-            for (what, input) in [
-                ("program", &job.program),
-                ("measurements", &job.measurements),
-            ] {
-                if same_file(&o, input) {
-                    return Err(CliError(format!(
-                        "{}: -o would overwrite the input {what} of {}; give another -o",
-                        o.display(),
-                        path.display()
-                    )));
-                }
+    let Ok(job) = CorrectionJob::from_toml(text, base) else {
+        return Ok(());
+    };
+    for f in &done.files {
+        let o = out.join(&f.name);
+        for (what, input) in [
+            ("program", &job.program),
+            ("measurements", &job.measurements),
+        ] {
+            if same_file(&o, input) {
+                return Err(CliError::RefusedByJob {
+                    path: o,
+                    what,
+                    job: path.to_path_buf(),
+                });
             }
         }
     }
-    write_run(out, &done)?;
-    Ok(done.line)
+    Ok(())
 }
 
-/// Whether a TOML table is a correction scenario (it has `[surface]` and `[warp]`).
-pub fn is_scenario(table: &toml::Table) -> bool {
-    ScenarioJob::is_scenario(table)
+/// [`guard_job`] for the job file at `path` when it is a correction job
+/// (the demo runs every kind).
+pub fn guard_job_file(path: &Path, out: &Path, done: &RunOutput) -> Result<(), CliError> {
+    let text = read_text(path)?;
+    if JobKind::of(path, &text) != JobKind::Correction {
+        return Ok(());
+    }
+    guard_job(path, &text, out, done)
 }
 
 /// Runs `formcam correct simulate`; returns the one-line summary.
 pub fn simulate(path: &Path, out: &Path) -> Result<String, CliError> {
     let text = read_text(path)?;
-    simulate_text(path, &text, out)
-}
-
-/// Runs a scenario already read (the demo passes the text it read).
-pub fn simulate_text(path: &Path, text: &str, out: &Path) -> Result<String, CliError> {
-    let done = formcam_run::correct_simulate(path, text, out)?;
+    let done = formcam_run::correct_simulate(path, &text, out)?;
     write_run(out, &done)?;
     Ok(done.line)
 }

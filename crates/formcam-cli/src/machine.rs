@@ -4,31 +4,26 @@ use std::fmt::Write as _;
 use std::fs;
 use std::path::Path;
 
-use formcam_machine::{Machine, MachineError};
+use formcam_machine::Machine;
 
 use crate::CliError;
 use crate::output::write_all;
 
 /// Reads a machine file; errors name the file, the link or point, and the field.
 pub fn load(path: &Path) -> Result<Machine, CliError> {
-    let text = fs::read_to_string(path).map_err(|e| {
-        CliError(format!(
-            "{}: cannot read the machine file: {e}",
-            path.display()
-        ))
+    let text = fs::read_to_string(path).map_err(|source| CliError::Read {
+        path: path.to_path_buf(),
+        what: " the machine file",
+        source,
     })?;
     parse(path, &text)
 }
 
 /// A machine from the text of its file (named `path` in errors).
 pub fn parse(path: &Path, text: &str) -> Result<Machine, CliError> {
-    Machine::from_toml(text).map_err(|e| match e {
-        MachineError::Syntax {
-            line,
-            column,
-            message,
-        } => CliError(format!("{}:{line}:{column}: {message}", path.display())),
-        other => CliError(format!("{}: {other}", path.display())),
+    Machine::from_toml(text).map_err(|source| CliError::Machine {
+        path: path.to_path_buf(),
+        source,
     })
 }
 
@@ -47,21 +42,17 @@ type AxesRow = (Option<f64>, Vec<f64>);
 
 /// The rows of an axes CSV.
 fn read_axes(m: &Machine, path: &Path) -> Result<Vec<AxesRow>, CliError> {
-    let text = fs::read_to_string(path).map_err(|e| {
-        CliError(format!(
-            "{}: cannot read the axes file: {e}",
-            path.display()
-        ))
+    let text = fs::read_to_string(path).map_err(|source| CliError::Read {
+        path: path.to_path_buf(),
+        what: " the axes file",
+        source,
     })?;
     let mut lines = text
         .lines()
         .enumerate()
         .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
-    let (_, header) = lines.next().ok_or_else(|| {
-        CliError(format!(
-            "{}: empty file (need a header row)",
-            path.display()
-        ))
+    let (_, header) = lines.next().ok_or_else(|| CliError::AxesEmpty {
+        path: path.to_path_buf(),
     })?;
     let names: Vec<&str> = header.split(',').map(str::trim).collect();
     let x_col = names.iter().position(|n| *n == "x");
@@ -69,18 +60,19 @@ fn read_axes(m: &Machine, path: &Path) -> Result<Vec<AxesRow>, CliError> {
         .axes
         .iter()
         .map(|a| {
-            names.iter().position(|n| *n == a.name).ok_or_else(|| {
-                CliError(format!(
-                    "{}:1: no column \"{}\" (the machine's axes are {})",
-                    path.display(),
-                    a.name,
-                    m.axes
+            names
+                .iter()
+                .position(|n| *n == a.name)
+                .ok_or_else(|| CliError::AxesColumn {
+                    path: path.to_path_buf(),
+                    axis: a.name.clone(),
+                    axes: m
+                        .axes
                         .iter()
                         .map(|a| a.name.as_str())
                         .collect::<Vec<_>>()
-                        .join(", ")
-                ))
-            })
+                        .join(", "),
+                })
         })
         .collect::<Result<_, _>>()?;
     let mut rows = Vec::new();
@@ -91,12 +83,10 @@ fn read_axes(m: &Machine, path: &Path) -> Result<Vec<AxesRow>, CliError> {
                 .get(c)
                 .and_then(|s| s.parse::<f64>().ok())
                 .filter(|v| v.is_finite())
-                .ok_or_else(|| {
-                    CliError(format!(
-                        "{}:{}: column \"{name}\": not a finite number",
-                        path.display(),
-                        i + 1
-                    ))
+                .ok_or_else(|| CliError::AxesNumber {
+                    path: path.to_path_buf(),
+                    line: i + 1,
+                    column: name.to_owned(),
                 })
         };
         let x = x_col.map(|c| num(c, "x")).transpose()?;
@@ -148,7 +138,9 @@ pub fn fk(machine: &Path, axes: &Path, out: &Path) -> Result<String, CliError> {
     let name = out
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
-        .ok_or_else(|| CliError(format!("{}: not a file name", out.display())))?;
+        .ok_or_else(|| CliError::NotFileName {
+            path: out.to_path_buf(),
+        })?;
     write_all(dir, &[(name.as_str(), s.into_bytes())])?;
     Ok(format!(
         "{}: {} rows, {} key points -> {}",

@@ -3,6 +3,7 @@
 
 mod correct;
 mod dress;
+mod error;
 mod machine;
 mod output;
 mod wind;
@@ -12,6 +13,8 @@ use std::process::ExitCode;
 
 use clap::{CommandFactory, Parser, Subcommand};
 use formcam_program::Stage;
+
+pub use error::CliError;
 
 /// formcam: CAM for filament winding, fibre placement, mould correction and wheel dressing.
 #[derive(Debug, Parser)]
@@ -144,16 +147,6 @@ enum MachineCommand {
     },
 }
 
-/// An error for the user: one line, naming the file and the field.
-#[derive(Debug)]
-pub struct CliError(pub String);
-
-impl From<formcam_plot::PlotError> for CliError {
-    fn from(e: formcam_plot::PlotError) -> Self {
-        CliError(e.to_string())
-    }
-}
-
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
@@ -186,12 +179,8 @@ fn main() -> ExitCode {
                     )
                     .map(|s| println!("{s}"))
                 }
-                _ if !allow.is_empty() => Err(CliError(
-                    "--allow: TOML jobs name the checks they accept in [checks] allow".into(),
-                )),
-                _ if eye_clearance.is_some() => Err(CliError(
-                    "--eye-clearance: for .wind jobs; TOML jobs place the eye in [eye]".into(),
-                )),
+                _ if !allow.is_empty() => Err(CliError::AllowForToml),
+                _ if eye_clearance.is_some() => Err(CliError::EyeClearanceForToml),
                 (job, output, stage) => wind::run(&job, &output, stage).map(|s| println!("{s}")),
             }
         }
@@ -221,8 +210,8 @@ fn main() -> ExitCode {
 fn finish(result: Result<(), CliError>) -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(CliError(msg)) => {
-            eprintln!("formcam: error: {msg}");
+        Err(e) => {
+            eprintln!("formcam: error: {e}");
             ExitCode::from(2)
         }
     }

@@ -17,6 +17,15 @@ pub fn write_run(dir: &Path, run: &formcam_run::RunOutput) -> Result<(), CliErro
     write_all(dir, &files)
 }
 
+/// Prints the run's warnings, writes its files into `dir` and returns its line.
+pub fn emit(dir: &Path, run: formcam_run::RunOutput) -> Result<String, CliError> {
+    for w in &run.warnings {
+        eprintln!("formcam: warning: {w}");
+    }
+    write_run(dir, &run)?;
+    Ok(run.line)
+}
+
 /// The temporary name of the file `name` (which may lie in a subfolder,
 /// `layer-01/path.csv`) inside `dir`, beside its target.
 fn temp_name(dir: &Path, name: &str) -> std::path::PathBuf {
@@ -32,11 +41,9 @@ fn temp_name(dir: &Path, name: &str) -> std::path::PathBuf {
 /// subfolders the names give) if needed. Nothing is renamed into place until
 /// every temporary file is complete.
 pub fn write_all<S: AsRef<str>>(dir: &Path, files: &[(S, Vec<u8>)]) -> Result<(), CliError> {
-    fs::create_dir_all(dir).map_err(|e| {
-        CliError(format!(
-            "{}: cannot create the output folder: {e}",
-            dir.display()
-        ))
+    fs::create_dir_all(dir).map_err(|source| CliError::OutputFolder {
+        path: dir.to_path_buf(),
+        source,
     })?;
     let mut temps = Vec::new();
     for (name, data) in files {
@@ -50,15 +57,15 @@ pub fn write_all<S: AsRef<str>>(dir: &Path, files: &[(S, Vec<u8>)]) -> Result<()
                 f.write_all(data)?;
                 f.sync_all()
             });
-        if let Err(e) = res {
+        if let Err(source) = res {
             for t in &temps {
                 let _ = fs::remove_file(t);
             }
             let _ = fs::remove_file(&tmp);
-            return Err(CliError(format!(
-                "{}: cannot write: {e}",
-                dir.join(name).display()
-            )));
+            return Err(CliError::Output {
+                path: dir.join(name),
+                source,
+            });
         }
         temps.push(tmp);
     }
@@ -70,22 +77,19 @@ pub fn write_all<S: AsRef<str>>(dir: &Path, files: &[(S, Vec<u8>)]) -> Result<()
             for t in &temps {
                 let _ = fs::remove_file(t);
             }
-            return Err(CliError(format!(
-                "{}: cannot write: a folder is in the way",
-                target.display()
-            )));
+            return Err(CliError::FolderInTheWay { path: target });
         }
     }
     for (k, ((name, _), tmp)) in files.iter().zip(&temps).enumerate() {
         let name = name.as_ref();
-        if let Err(e) = fs::rename(tmp, dir.join(name)) {
+        if let Err(source) = fs::rename(tmp, dir.join(name)) {
             for t in &temps[k..] {
                 let _ = fs::remove_file(t);
             }
-            return Err(CliError(format!(
-                "{}: cannot write: {e}",
-                dir.join(name).display()
-            )));
+            return Err(CliError::Output {
+                path: dir.join(name),
+                source,
+            });
         }
     }
     Ok(())

@@ -13,6 +13,28 @@ pub enum RunError {
         /// The reason.
         source: std::io::Error,
     },
+    /// A job file could not be read.
+    #[error("{}: cannot read the job file: {source}", path.display())]
+    ReadJob {
+        /// The job file.
+        path: PathBuf,
+        /// The reason.
+        source: std::io::Error,
+    },
+    /// The folder of example jobs could not be listed.
+    #[error("{}: cannot list the examples: {source}", path.display())]
+    Examples {
+        /// The folder.
+        path: PathBuf,
+        /// The reason.
+        source: std::io::Error,
+    },
+    /// The folder of example jobs holds no job.
+    #[error("{}: no *.toml or *.wind jobs found", path.display())]
+    NoExamples {
+        /// The folder.
+        path: PathBuf,
+    },
     /// A dressing job could not be run: the file (the job, or a file it
     /// names), where in it, and what is wrong (naming the field).
     #[error("{}{at}: {message}", file.display())]

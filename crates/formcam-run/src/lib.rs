@@ -10,6 +10,7 @@ mod correct;
 mod dress;
 mod error;
 mod files;
+mod job;
 mod wind;
 
 pub use correct::{
@@ -19,4 +20,5 @@ pub use correct::{
 pub use dress::{dress, dress_text, is_dress_job};
 pub use error::RunError;
 pub use files::{ResultFile, RunOutput};
+pub use job::{JobKind, demo, demo_folder, dressing_for, run_job_file};
 pub use wind::{wind, wind_file, wind_furthest};

@@ -1,0 +1,135 @@
+//! The command line's error: one line for the user, naming the file and the
+//! field. Every failure exits with status 2.
+
+use std::io;
+use std::path::PathBuf;
+
+use formcam_machine::MachineError;
+use formcam_run::RunError;
+
+/// Why a command failed.
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    /// The run of a job failed.
+    #[error(transparent)]
+    Run(#[from] RunError),
+    /// A file the command reads could not be read.
+    #[error("{}: cannot read{what}: {source}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Which file, as the message names it (` the machine file`), or empty.
+        what: &'static str,
+        /// The reason.
+        source: io::Error,
+    },
+    /// A machine file that is no valid machine.
+    #[error("{}{}{source}", path.display(), if matches!(source, MachineError::Syntax { .. }) { ":" } else { ": " })]
+    Machine {
+        /// The machine file.
+        path: PathBuf,
+        /// What is wrong, naming the link or point and the field.
+        source: MachineError,
+    },
+    /// An axes file without a header row.
+    #[error("{}: empty file (need a header row)", path.display())]
+    AxesEmpty {
+        /// The axes file.
+        path: PathBuf,
+    },
+    /// An axes file without a column for one of the machine's axes.
+    #[error("{}:1: no column \"{axis}\" (the machine's axes are {axes})", path.display())]
+    AxesColumn {
+        /// The axes file.
+        path: PathBuf,
+        /// The axis missing.
+        axis: String,
+        /// The machine's axes, comma-separated.
+        axes: String,
+    },
+    /// A cell of an axes file that is no finite number.
+    #[error("{}:{line}: column \"{column}\": not a finite number", path.display())]
+    AxesNumber {
+        /// The axes file.
+        path: PathBuf,
+        /// The line (1-based).
+        line: usize,
+        /// The column's name.
+        column: String,
+    },
+    /// An output path that names no file.
+    #[error("{}: not a file name", path.display())]
+    NotFileName {
+        /// The path.
+        path: PathBuf,
+    },
+    /// The output folder could not be created.
+    #[error("{}: cannot create the output folder: {source}", path.display())]
+    OutputFolder {
+        /// The folder.
+        path: PathBuf,
+        /// The reason.
+        source: io::Error,
+    },
+    /// An output file could not be written.
+    #[error("{}: cannot write: {source}", path.display())]
+    Output {
+        /// The file.
+        path: PathBuf,
+        /// The reason.
+        source: io::Error,
+    },
+    /// A folder stands where an output file goes.
+    #[error("{}: cannot write: a folder is in the way", path.display())]
+    FolderInTheWay {
+        /// The target.
+        path: PathBuf,
+    },
+    /// An output that would land on an input of the command.
+    #[error("{}: {flag} would overwrite the input {what}; give another {flag}", path.display())]
+    Refused {
+        /// The output.
+        path: PathBuf,
+        /// The option naming it (`-o`, `--report`).
+        flag: &'static str,
+        /// The input (`program`, `measurements`).
+        what: &'static str,
+    },
+    /// A result file of a correction job that would land on its input.
+    #[error("{}: -o would overwrite the input {what} of {}; give another -o", path.display(), job.display())]
+    RefusedByJob {
+        /// The result file.
+        path: PathBuf,
+        /// The input (`program`, `measurements`).
+        what: &'static str,
+        /// The job file.
+        job: PathBuf,
+    },
+    /// `--report` and `-o` name the same file.
+    #[error("{}: --report and -o are the same file; give another --report", path.display())]
+    SameReport {
+        /// The report.
+        path: PathBuf,
+    },
+    /// `formcam correct` without one of its required options.
+    #[error("correct: give {flag} (see formcam correct --help)")]
+    CorrectNeeds {
+        /// The option and an example value.
+        flag: &'static str,
+    },
+    /// `formcam correct JOB` without `-o`.
+    #[error("correct {}: give -o OUTDIR (the folder for the corrected program, report.json and the plots)", job.display())]
+    CorrectJobNeedsOutput {
+        /// The job file.
+        job: PathBuf,
+    },
+    /// An unknown `--dialect`.
+    #[error("--dialect: {0}")]
+    Dialect(formcam_nc::NcError),
+    /// `--allow` given with a TOML winding job.
+    #[error("--allow: TOML jobs name the checks they accept in [checks] allow")]
+    AllowForToml,
+    /// `--eye-clearance` given with a TOML winding job.
+    #[error("--eye-clearance: for .wind jobs; TOML jobs place the eye in [eye]")]
+    EyeClearanceForToml,
+}

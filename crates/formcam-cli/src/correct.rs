@@ -81,7 +81,6 @@ pub struct CorrectArgs {
 fn read_text(path: &Path) -> Result<String, CliError> {
     fs::read_to_string(path).map_err(|source| CliError::Read {
         path: path.to_path_buf(),
-        what: "",
         source,
     })
 }

@@ -13,13 +13,27 @@ pub enum CliError {
     /// The run of a job failed.
     #[error(transparent)]
     Run(#[from] RunError),
-    /// A file the command reads could not be read.
-    #[error("{}: cannot read{what}: {source}", path.display())]
+    /// An input file (a correction job, scenario or report) could not be read.
+    #[error("{}: cannot read: {source}", path.display())]
     Read {
         /// The file.
         path: PathBuf,
-        /// Which file, as the message names it (` the machine file`), or empty.
-        what: &'static str,
+        /// The reason.
+        source: io::Error,
+    },
+    /// A machine file could not be read.
+    #[error("{}: cannot read the machine file: {source}", path.display())]
+    ReadMachine {
+        /// The machine file.
+        path: PathBuf,
+        /// The reason.
+        source: io::Error,
+    },
+    /// An axes file could not be read.
+    #[error("{}: cannot read the axes file: {source}", path.display())]
+    ReadAxes {
+        /// The axes file.
+        path: PathBuf,
         /// The reason.
         source: io::Error,
     },

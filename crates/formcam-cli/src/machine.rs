@@ -11,9 +11,8 @@ use crate::output::write_all;
 
 /// Reads a machine file; errors name the file, the link or point, and the field.
 pub fn load(path: &Path) -> Result<Machine, CliError> {
-    let text = fs::read_to_string(path).map_err(|source| CliError::Read {
+    let text = fs::read_to_string(path).map_err(|source| CliError::ReadMachine {
         path: path.to_path_buf(),
-        what: " the machine file",
         source,
     })?;
     parse(path, &text)
@@ -42,9 +41,8 @@ type AxesRow = (Option<f64>, Vec<f64>);
 
 /// The rows of an axes CSV.
 fn read_axes(m: &Machine, path: &Path) -> Result<Vec<AxesRow>, CliError> {
-    let text = fs::read_to_string(path).map_err(|source| CliError::Read {
+    let text = fs::read_to_string(path).map_err(|source| CliError::ReadAxes {
         path: path.to_path_buf(),
-        what: " the axes file",
         source,
     })?;
     let mut lines = text

@@ -11,22 +11,36 @@ use crate::{Machine, Target};
 /// key point is what has been laid (`x`) plus the growth of that run.
 pub fn band_passed(m: &Machine, targets: &[Target], track: &AxisTrack) -> Vec<Vec<f64>> {
     let path = &m.roles.band_path;
-    let run = |q: &[f64], t: &Target| -> Vec<f64> {
-        let pts = m.key_points(q);
+    // One buffer of link poses and one of run lengths for every point: only
+    // the band path's key points are placed.
+    let mut poses = Vec::with_capacity(m.links.len());
+    let mut out = vec![0.0; path.len()];
+    let mut run = |q: &[f64], t: &Target, out: &mut [f64]| {
+        m.poses_into(q, &mut poses);
+        let at = |k: usize| {
+            let p = &m.points[path[k]];
+            poses[p.link] * p.position
+        };
         // Distance from each band-path point to the payout point along the path.
-        let mut out = vec![0.0; path.len()];
+        out.fill(0.0);
         for i in (0..path.len().saturating_sub(1)).rev() {
-            out[i] = out[i + 1] + (pts[path[i + 1]] - pts[path[i]]).norm();
+            out[i] = out[i + 1] + (at(i + 1) - at(i)).norm();
         }
-        out.iter().map(|d| d + t.free_length + t.x).collect()
+        for d in out.iter_mut() {
+            *d = *d + t.free_length + t.x;
+        }
     };
     let Some((q0, t0)) = track.rows().next().zip(targets.first()) else {
         return Vec::new();
     };
-    let start = run(q0, t0);
+    let mut start = vec![0.0; path.len()];
+    run(q0, t0, &mut start);
     track
         .rows()
         .zip(targets)
-        .map(|(q, t)| run(q, t).iter().zip(&start).map(|(a, b)| a - b).collect())
+        .map(|(q, t)| {
+            run(q, t, &mut out);
+            out.iter().zip(&start).map(|(a, b)| a - b).collect()
+        })
         .collect()
 }

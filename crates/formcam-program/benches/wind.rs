@@ -1,6 +1,7 @@
 //! The winding pipeline of whole jobs: a single-layer tube on the shipped
 //! 2-axis winder, and the same tube wound in four layers (hoop, helical,
-//! hoop, helical), whose layers' eye, axes and blocks run in parallel.
+//! hoop, helical), whose layers' eye, axes and blocks run in parallel; and
+//! the speed case: a 3-layer vessel with 10^6 path points.
 
 #![allow(clippy::expect_used, missing_docs)]
 
@@ -39,6 +40,48 @@ dialect = "marlin-xab"
 allow = ["slack", "clearance", "l_max", "cyclicity", "reverse-rotation", "limits", "unreachable", "timing"]
 "#;
 
+/// The speed case: the hemisphere vessel of `examples/vessel-layers-840d.toml`
+/// (a hoop layer, two geodesic helical layers) with an equidistant eye on the
+/// shipped 4-axis winder, for a Sinumerik 840D. Each layer's circuit holds
+/// `eye.samples` = 333 334 path points, 1 000 002 in all. It makes 25 144
+/// blocks and a program of 1 480 445 bytes (the bench prints the counts).
+/// The eye keeps 10 mm: at the example's 20 mm an equidistant eye lets the
+/// band go slack at the second layer's turn-arounds, and the program would be
+/// refused.
+const VESSEL: &str = r#"
+[mandrel]
+kind = "vessel"
+radius = 100.0
+cylinder_length = 300.0
+dome = "hemisphere"
+polar_opening = 30.0
+
+[[layer]]
+kind = "hoop"
+band_width = 10.0
+band_thickness = 0.5
+
+[[layer]]
+band_width = 10.0
+band_thickness = 0.5
+
+[[layer]]
+band_width = 10.0
+band_thickness = 0.5
+
+[eye]
+mode = "equidistant"
+clearance = 10.0
+l_max = 400.0
+samples = 333334
+
+[machine]
+name = "winder-4axis"
+
+[post]
+dialect = "sinumerik-840d"
+"#;
+
 fn layers() -> String {
     let hoop = "[[layer]]\nkind = \"hoop\"\nband_width = 8.0\nband_thickness = 0.3\n";
     let helical = "[[layer]]\nmu = 0.0\nwinding_angle_deg = 50.0\nband_width = 8.0\n\
@@ -68,6 +111,41 @@ fn benches(c: &mut Criterion) {
     g.bench_function("tube, four layers: plan and post", |b| {
         b.iter(|| {
             let p = plan_program(black_box(&multi)).expect("plan");
+            let mut text = Vec::new();
+            write_program(&p, &mut text).expect("post");
+            text.len()
+        });
+    });
+    g.finish();
+    vessel(c);
+}
+
+/// The speed case: planning alone, and planning and writing the program.
+fn vessel(c: &mut Criterion) {
+    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let job = WindJob::from_toml(VESSEL, here).expect("job");
+    let p = plan_program(&job).expect("plan");
+    let points: usize = p
+        .layers
+        .iter()
+        .filter_map(|l| l.wound())
+        .map(|w| w.targets.len())
+        .sum();
+    let blocks = p.program.as_ref().map_or(0, |a| a.blocks.len());
+    let mut text = Vec::new();
+    write_program(&p, &mut text).expect("post");
+    eprintln!(
+        "vessel, 3 layers: {points} path points, {blocks} blocks, {} bytes",
+        text.len()
+    );
+    let mut g = c.benchmark_group("wind 1e6");
+    g.sample_size(10);
+    g.bench_function("vessel, 3 layers, 1e6 points: plan", |b| {
+        b.iter(|| plan_program(black_box(&job)).expect("plan"));
+    });
+    g.bench_function("vessel, 3 layers, 1e6 points: plan and write", |b| {
+        b.iter(|| {
+            let p = plan_program(black_box(&job)).expect("plan");
             let mut text = Vec::new();
             write_program(&p, &mut text).expect("post");
             text.len()

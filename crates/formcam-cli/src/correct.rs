@@ -11,7 +11,7 @@ use formcam_correct::{
     Settings, Tool,
 };
 use formcam_nc::Dialect;
-use formcam_run::{History, JobKind, RunOutput};
+use formcam_run::{History, RunOutput};
 
 use crate::CliError;
 use crate::output::{write_all, write_run};
@@ -78,7 +78,7 @@ pub struct CorrectArgs {
     pub max_deviation: f64,
 }
 
-fn read_text(path: &Path) -> Result<String, CliError> {
+pub(crate) fn read_text(path: &Path) -> Result<String, CliError> {
     fs::read_to_string(path).map_err(|source| CliError::Read {
         path: path.to_path_buf(),
         source,
@@ -210,7 +210,12 @@ fn guard_outputs(
 
 /// No result file of the correction job at `path` (text `text`), written
 /// into `out`, may land on the job's program or measurements.
-fn guard_job(path: &Path, text: &str, out: &Path, done: &RunOutput) -> Result<(), CliError> {
+pub(crate) fn guard_job(
+    path: &Path,
+    text: &str,
+    out: &Path,
+    done: &RunOutput,
+) -> Result<(), CliError> {
     // The job was read by the run, so it reads here too.
     let base = path.parent().unwrap_or(Path::new("."));
     let Ok(job) = CorrectionJob::from_toml(text, base) else {
@@ -232,16 +237,6 @@ fn guard_job(path: &Path, text: &str, out: &Path, done: &RunOutput) -> Result<()
         }
     }
     Ok(())
-}
-
-/// [`guard_job`] for the job file at `path` when it is a correction job
-/// (the demo runs every kind).
-pub fn guard_job_file(path: &Path, out: &Path, done: &RunOutput) -> Result<(), CliError> {
-    let text = read_text(path)?;
-    if JobKind::of(path, &text) != JobKind::Correction {
-        return Ok(());
-    }
-    guard_job(path, &text, out, done)
 }
 
 /// Runs `formcam correct simulate`; returns the one-line summary.

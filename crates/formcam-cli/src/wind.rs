@@ -74,8 +74,12 @@ pub fn run_demo(examples: &Path, out: &Path) -> Result<(), CliError> {
     let jobs = formcam_run::demo(examples)?;
     for job in &jobs {
         let dir = formcam_run::demo_folder(out, job);
-        let run = formcam_run::run_job_file(job, &dir)?;
-        crate::correct::guard_job_file(job, &dir, &run)?;
+        let text = crate::correct::read_text(job)?;
+        let kind = formcam_run::JobKind::of(job, &text);
+        let run = formcam_run::run_job_text(job, &text, kind, &dir)?;
+        if kind == formcam_run::JobKind::Correction {
+            crate::correct::guard_job(job, &text, &dir, &run)?;
+        }
         println!("{}", emit(&dir, run)?);
     }
     println!("{} jobs written under {}", jobs.len(), out.display());

@@ -52,12 +52,23 @@ pub fn run_job_file(path: &Path, out: &Path) -> Result<RunOutput, RunError> {
         path: path.to_path_buf(),
         source,
     })?;
-    match JobKind::of(path, &text) {
+    run_job_text(path, &text, JobKind::of(path, &text), out)
+}
+
+/// [`run_job_file`] for a job whose `text` and `kind` the caller has
+/// already read.
+pub fn run_job_text(
+    path: &Path,
+    text: &str,
+    kind: JobKind,
+    out: &Path,
+) -> Result<RunOutput, RunError> {
+    match kind {
         JobKind::WindFile => crate::wind_file(path, out, formcam_program::EYE_CLEARANCE_MM, &[]),
         JobKind::Winding => crate::wind_furthest(path, out),
-        JobKind::Correction => correct_job(path, &text, out),
-        JobKind::Scenario => correct_simulate(path, &text, out),
-        JobKind::Dressing => Ok(dressing_for(path, out, dress_text(path, &text)?)),
+        JobKind::Correction => correct_job(path, text, out),
+        JobKind::Scenario => correct_simulate(path, text, out),
+        JobKind::Dressing => Ok(dressing_for(path, out, dress_text(path, text)?)),
     }
 }
 

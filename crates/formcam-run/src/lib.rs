@@ -20,5 +20,5 @@ pub use correct::{
 pub use dress::{dress, dress_text, is_dress_job};
 pub use error::RunError;
 pub use files::{ResultFile, RunOutput};
-pub use job::{JobKind, demo, demo_folder, dressing_for, run_job_file};
+pub use job::{JobKind, demo, demo_folder, dressing_for, run_job_file, run_job_text};
 pub use wind::{wind, wind_file, wind_furthest};

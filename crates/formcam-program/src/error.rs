@@ -7,6 +7,7 @@ use formcam_nc::NcError;
 use formcam_winding::WindingError;
 
 use crate::checks::Check;
+use crate::windfile::SPEC_VERSION;
 
 /// Everything that can stop a winding program.
 #[derive(Debug, thiserror::Error)]
@@ -113,7 +114,7 @@ pub enum ProgramError {
     Motion(#[from] MotionError),
     /// The machine's axis limits do not allow block times.
     #[error("machine: {0}")]
-    AxisLimits(MotionError),
+    AxisLimits(#[source] MotionError),
     /// A skip layer's `mandrel_rotation_deg` is missing.
     #[error("layer[{layer}].mandrel_rotation_deg: missing: how far the mandrel turns, degrees")]
     SkipTurnMissing {
@@ -152,7 +153,7 @@ pub enum ProgramError {
     PostBoth,
     /// `post.dialect` is not a dialect.
     #[error("post.dialect: {0}")]
-    Dialect(NcError),
+    Dialect(#[source] NcError),
     /// The template file cannot be read.
     #[error("post.template: cannot read {file}: {source}")]
     TemplateRead {
@@ -174,11 +175,293 @@ pub enum ProgramError {
     Post(#[from] NcError),
     /// A `.wind` document that cannot be read, naming the member
     /// (`layers[1].windAngle`).
-    #[error("{0}")]
-    WindFile(String),
+    #[error(transparent)]
+    WindFile(#[from] WindFileError),
     /// The program could not be written to its destination.
     #[error("cannot write the program: {0}")]
     Write(#[from] std::io::Error),
+}
+
+/// Why a Cyclone/FiberPath `.wind` document cannot be read: each variant
+/// names the member by its JSON path (`member`, such as
+/// `layers[1].windAngle`) and the rule of the format's specification it breaks.
+#[derive(Debug, thiserror::Error)]
+pub enum WindFileError {
+    /// The shipped X/A/B winder no longer places its eye's arm where the
+    /// reader moves it.
+    #[error("{machine} (shipped): the eye's arm is not where the .wind reader expects it")]
+    ArmMoved {
+        /// The shipped machine's name.
+        machine: &'static str,
+    },
+    /// The eye's clearance over the mandrel is not a positive number.
+    #[error("--eye-clearance: must be a finite number > 0 mm, got {value}")]
+    EyeClearance {
+        /// The clearance given, mm.
+        value: f64,
+    },
+    /// The text is not JSON.
+    #[error("{}:{}: {}", .0.line(), .0.column(), one_line(.0))]
+    Json(#[source] serde_json::Error),
+    /// The document is JSON but not an object.
+    #[error("the document must be a JSON object")]
+    NotADocument,
+    /// A member that must be an object is not.
+    #[error("{member}: must be an object")]
+    NotAnObject {
+        /// The member.
+        member: String,
+    },
+    /// A required member is missing; the unknown members beside it are named,
+    /// as they may be it misspelt.
+    #[error("{member}: missing (required{})", unknown_given(.unknown))]
+    Missing {
+        /// The member.
+        member: String,
+        /// The unknown members of the same object.
+        unknown: Vec<String>,
+    },
+    /// A member that must be a finite number is not.
+    #[error("{member}: must be a finite number")]
+    NotFinite {
+        /// The member.
+        member: String,
+    },
+    /// A number that must be positive is not.
+    #[error("{member}: must be > 0 {unit}, got {value}")]
+    NotPositive {
+        /// The member.
+        member: String,
+        /// Its unit (`mm`, `deg`, `mm/min`).
+        unit: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// A count that must be an integer >= 1 is not.
+    #[error("{member}: must be an integer >= 1, got {value}")]
+    NotACount {
+        /// The member.
+        member: String,
+        /// The value given.
+        value: f64,
+    },
+    /// A member that must be `true` or `false` is not.
+    #[error("{member}: must be true or false")]
+    NotABoolean {
+        /// The member.
+        member: String,
+    },
+    /// A member that must be a string is not.
+    #[error("{member}: must be a string")]
+    NotAString {
+        /// The member.
+        member: String,
+    },
+    /// `schemaVersion` is not a string.
+    #[error("schemaVersion: must be a string such as \"1.3\"")]
+    VersionNotAString,
+    /// `schemaVersion` is not `<major>.<minor>`.
+    #[error("schemaVersion: \"{text}\" is not a version <major>.<minor> (1.x is read)")]
+    VersionForm {
+        /// The version given.
+        text: String,
+    },
+    /// `schemaVersion` has a major version other than 1.
+    #[error(
+        "schemaVersion: \"{text}\" is not supported (1.x is; formcam reads the specification up \
+         to {}.{})",
+        SPEC_VERSION.0,
+        SPEC_VERSION.1
+    )]
+    VersionUnsupported {
+        /// The version given.
+        text: String,
+    },
+    /// `skipIndex` and `patternNumber` share a factor.
+    #[error(
+        "{member}: {skip_index} and patternNumber {pattern} must be coprime (gcd {gcd}) for full \
+         coverage"
+    )]
+    NotCoprime {
+        /// The member (`layers[N].skipIndex`).
+        member: String,
+        /// The skip index.
+        skip_index: u32,
+        /// The pattern number.
+        pattern: u32,
+        /// Their greatest common divisor.
+        gcd: u32,
+    },
+    /// The lead-in is as long as the wind length or longer.
+    #[error(
+        "{member}: {lead_in_mm} mm must be shorter than mandrelParameters.windLength \
+         ({wind_length_mm} mm)"
+    )]
+    LeadInTooLong {
+        /// The member (`layers[N].leadInMM`).
+        member: String,
+        /// The lead-in, mm.
+        lead_in_mm: f64,
+        /// The wind length, mm.
+        wind_length_mm: f64,
+    },
+    /// The pattern number does not divide the layer's circuits.
+    #[error(
+        "{member}: {pattern} does not divide the layer's {circuits} circuits (pi x diameter x \
+         cos(windAngle) / tow width, rounded up); change the angle, the pattern or the tow"
+    )]
+    PatternDoesNotDivide {
+        /// The member (`layers[N].patternNumber`).
+        member: String,
+        /// The pattern number.
+        pattern: u32,
+        /// The layer's circuits.
+        circuits: f64,
+    },
+    /// `lockDegrees` does not step the circuits onto the pattern's slots.
+    #[error(
+        "{member}: {lock_deg} deg must be a multiple of 180 / patternNumber = {half_slot_deg} deg \
+         (nearest: {below_deg}, {above_deg})"
+    )]
+    LockOffSlot {
+        /// The member (`layers[N].lockDegrees`).
+        member: String,
+        /// The lock given, degrees.
+        lock_deg: f64,
+        /// Half a slot, `180 / patternNumber`, degrees.
+        half_slot_deg: f64,
+        /// The nearest multiple below, degrees.
+        below_deg: f64,
+        /// The nearest multiple above, degrees.
+        above_deg: f64,
+    },
+    /// `lockDegrees` steps the circuits onto each other.
+    #[error(
+        "{member}: {lock_deg} deg with skipIndex {skip_index} steps each circuit {stride} of \
+         {pattern} slots, which is not coprime with patternNumber: circuits would lie on each other"
+    )]
+    LockStride {
+        /// The member (`layers[N].lockDegrees`).
+        member: String,
+        /// The lock given, degrees.
+        lock_deg: f64,
+        /// The skip index.
+        skip_index: u32,
+        /// The slots each circuit steps.
+        stride: u32,
+        /// The pattern number.
+        pattern: u32,
+    },
+    /// A profile mandrel that also gives an `endDiameter`.
+    #[error(
+        "mandrelParameters.profile: profile and endDiameter are mutually exclusive (a profile \
+         defines the whole surface)"
+    )]
+    ProfileAndEndDiameter,
+    /// A profile mandrel, which formcam does not wind.
+    #[error(
+        "mandrelParameters.profile: a \"{kind}\" profile mandrel (1.2+) changes the geometry and \
+         formcam does not wind it yet (cylinders and reducing cones it does)"
+    )]
+    ProfileMandrel {
+        /// The profile's `type` (`?` when absent).
+        kind: String,
+    },
+    /// An `endDiameter` larger than the diameter.
+    #[error(
+        "mandrelParameters.endDiameter: {end_mm} mm > diameter {diameter_mm} mm is an expanding \
+         cone; .wind cones are reducing frustums only (endDiameter < diameter: mount the large \
+         end at z = 0)"
+    )]
+    ExpandingCone {
+        /// The end diameter, mm.
+        end_mm: f64,
+        /// The diameter, mm.
+        diameter_mm: f64,
+    },
+    /// `layers` is not an array.
+    #[error("layers: must be an array")]
+    LayersNotAnArray,
+    /// A hoop layer on a cone.
+    #[error(
+        "{layer}: a hoop layer on a cone is refused by the specification (a hoop is not a \
+         geodesic of a cone)"
+    )]
+    HoopOnCone {
+        /// The layer (`layers[N]`).
+        layer: String,
+    },
+    /// A terminal hoop before the last layer.
+    #[error("{member}: a terminal hoop must be the last layer")]
+    TerminalNotLast {
+        /// The member (`layers[N].terminal`).
+        member: String,
+    },
+    /// A wind angle outside (0, 90] degrees.
+    #[error("{member}: {angle_deg} deg: a wind angle lies in (0, 90] degrees from the axis")]
+    WindAngle {
+        /// The member (`layers[N].windAngle`).
+        member: String,
+        /// The angle given, degrees.
+        angle_deg: f64,
+    },
+    /// A negative `frictionLambda`.
+    #[error("{member}: must be >= 0, got {value}")]
+    FrictionNegative {
+        /// The member (`layers[N].frictionLambda`).
+        member: String,
+        /// The value given.
+        value: f64,
+    },
+    /// A non-zero `frictionLambda` on a cylinder or cone.
+    #[error(
+        "{member}: {value}: non-geodesic winding needs a profile mandrel; a {} is wound \
+         geodesically (0)",
+        if *.cone { "cone" } else { "cylinder" }
+    )]
+    FrictionNotGeodesic {
+        /// The member (`layers[N].frictionLambda`).
+        member: String,
+        /// The value given.
+        value: f64,
+        /// Whether the mandrel is a cone (else a cylinder).
+        cone: bool,
+    },
+    /// A helical layer whose geodesic turns before the cone's small end.
+    #[error(
+        "{member}: {angle_deg} deg is too steep for the cone: its geodesic turns before the small \
+         end (diameter x sin(windAngle) must be <= endDiameter; at most {max_deg:.4} deg)"
+    )]
+    TooSteepForCone {
+        /// The member (`layers[N].windAngle`).
+        member: String,
+        /// The angle given, degrees.
+        angle_deg: f64,
+        /// The steepest angle that reaches the small end, degrees.
+        max_deg: f64,
+    },
+    /// A `windType` formcam does not wind.
+    #[error("{member}: \"{kind}\" is not a layer type formcam winds (hoop, helical, skip)")]
+    UnknownLayerType {
+        /// The member (`layers[N].windType`).
+        member: String,
+        /// The type given.
+        kind: String,
+    },
+}
+
+/// serde_json's message on one line.
+fn one_line(e: &serde_json::Error) -> String {
+    e.to_string().replace('\n', " ")
+}
+
+/// `; unknown members given: a, b` when there are any.
+fn unknown_given(unknown: &[String]) -> String {
+    if unknown.is_empty() {
+        String::new()
+    } else {
+        format!("; unknown members given: {}", unknown.join(", "))
+    }
 }
 
 impl ProgramError {

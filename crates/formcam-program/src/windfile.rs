@@ -28,6 +28,7 @@ use serde_json::{Map, Value};
 
 use crate::ProgramError;
 use crate::checks::Check;
+use crate::error::WindFileError;
 use crate::job::{JobMachine, Layers, MachineSource, MotionJob, Post, WindImport, WindJob};
 
 /// The shipped machine `.wind` jobs run on (its eye 250 mm from the axis;
@@ -46,9 +47,7 @@ const ARM_ORIGIN: &str = "origin = { xyz = [0.0, 250.0, 1000.0] }";
 pub fn machine_text(eye_radius: f64) -> Result<String, ProgramError> {
     let text = shipped(MACHINE).map_or("", |s| s.text);
     if text.matches(ARM_ORIGIN).count() != 1 {
-        return Err(ProgramError::WindFile(format!(
-            "{MACHINE} (shipped): the eye's arm is not where the .wind reader expects it"
-        )));
+        return Err(WindFileError::ArmMoved { machine: MACHINE }.into());
     }
     Ok(text.replace(
         ARM_ORIGIN,
@@ -70,7 +69,7 @@ impl WindJob {
         eye_clearance: f64,
         allow: &[Check],
     ) -> Result<WindJob, ProgramError> {
-        let imported = parse(text, eye_clearance).map_err(ProgramError::WindFile)?;
+        let imported = parse(text, eye_clearance)?;
         let machine = formcam_machine::Machine::from_toml(&machine_text(imported.eye_radius)?)
             .map_err(|e| ProgramError::machine(MACHINE, e))?;
         let mut checks = vec![Check::Slack];
@@ -128,15 +127,20 @@ struct Obj<'a> {
 }
 
 impl<'a> Obj<'a> {
-    fn new(path: &str, v: Option<&'a Value>) -> Result<Self, String> {
+    fn new(path: &str, v: Option<&'a Value>) -> Result<Self, WindFileError> {
         match v {
             Some(Value::Object(map)) => Ok(Self {
                 path: path.to_string(),
                 map,
                 seen: Vec::new(),
             }),
-            Some(_) => Err(format!("{path}: must be an object")),
-            None => Err(format!("{path}: missing (required)")),
+            Some(_) => Err(WindFileError::NotAnObject {
+                member: path.to_string(),
+            }),
+            None => Err(WindFileError::Missing {
+                member: path.to_string(),
+                unknown: Vec::new(),
+            }),
         }
     }
 
@@ -155,62 +159,64 @@ impl<'a> Obj<'a> {
 
     /// A missing required member; unknown members beside it are named, as they
     /// may be it misspelt.
-    fn missing(&self, key: &str) -> String {
-        let unknown = self.unknown();
-        if unknown.is_empty() {
-            format!("{}: missing (required)", self.name(key))
-        } else {
-            format!(
-                "{}: missing (required; unknown members given: {})",
-                self.name(key),
-                unknown.join(", ")
-            )
+    fn missing(&self, key: &str) -> WindFileError {
+        WindFileError::Missing {
+            member: self.name(key),
+            unknown: self.unknown(),
         }
     }
 
-    fn number(&mut self, key: &'static str) -> Result<Option<f64>, String> {
+    fn number(&mut self, key: &'static str) -> Result<Option<f64>, WindFileError> {
         match self.get(key) {
             None => Ok(None),
             Some(v) => match v.as_f64() {
                 Some(x) if x.is_finite() => Ok(Some(x)),
-                _ => Err(format!("{}: must be a finite number", self.name(key))),
+                _ => Err(WindFileError::NotFinite {
+                    member: self.name(key),
+                }),
             },
         }
     }
 
-    fn required(&mut self, key: &'static str) -> Result<f64, String> {
+    fn required(&mut self, key: &'static str) -> Result<f64, WindFileError> {
         self.number(key)?.ok_or_else(|| self.missing(key))
     }
 
     /// A required number > 0.
-    fn positive(&mut self, key: &'static str, unit: &str) -> Result<f64, String> {
-        let v = self.required(key)?;
-        if v > 0.0 {
-            Ok(v)
+    fn positive(&mut self, key: &'static str, unit: &'static str) -> Result<f64, WindFileError> {
+        let value = self.required(key)?;
+        if value > 0.0 {
+            Ok(value)
         } else {
-            Err(format!("{}: must be > 0 {unit}, got {v}", self.name(key)))
+            Err(WindFileError::NotPositive {
+                member: self.name(key),
+                unit,
+                value,
+            })
         }
     }
 
     /// A required integer >= 1.
-    fn count(&mut self, key: &'static str) -> Result<u32, String> {
+    fn count(&mut self, key: &'static str) -> Result<u32, WindFileError> {
         let v = self.required(key)?;
         if v >= 1.0 && v.fract() == 0.0 && v <= f64::from(u32::MAX) {
             #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
             Ok(v as u32)
         } else {
-            Err(format!(
-                "{}: must be an integer >= 1, got {v}",
-                self.name(key)
-            ))
+            Err(WindFileError::NotACount {
+                member: self.name(key),
+                value: v,
+            })
         }
     }
 
-    fn boolean(&mut self, key: &'static str) -> Result<Option<bool>, String> {
+    fn boolean(&mut self, key: &'static str) -> Result<Option<bool>, WindFileError> {
         match self.get(key) {
             None => Ok(None),
             Some(Value::Bool(b)) => Ok(Some(*b)),
-            Some(_) => Err(format!("{}: must be true or false", self.name(key))),
+            Some(_) => Err(WindFileError::NotABoolean {
+                member: self.name(key),
+            }),
         }
     }
 
@@ -239,25 +245,19 @@ fn gcd(a: u32, b: u32) -> u32 {
 }
 
 /// The `schemaVersion` as `(major, minor)`: `1.<digits>`.
-fn version(v: Option<&Value>) -> Result<(String, u32), String> {
+fn version(v: Option<&Value>) -> Result<(String, u32), WindFileError> {
     let text = match v {
         None => return Ok(("1.0".into(), 0)),
         Some(Value::String(s)) => s.trim().to_string(),
-        Some(_) => return Err("schemaVersion: must be a string such as \"1.3\"".into()),
+        Some(_) => return Err(WindFileError::VersionNotAString),
     };
     let (major, minor) = text.split_once('.').unwrap_or((text.as_str(), ""));
     let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
     if !digits(major) || !digits(minor) {
-        return Err(format!(
-            "schemaVersion: \"{text}\" is not a version <major>.<minor> (1.x is read)"
-        ));
+        return Err(WindFileError::VersionForm { text });
     }
     if major.parse::<u32>().ok() != Some(SPEC_VERSION.0) {
-        return Err(format!(
-            "schemaVersion: \"{text}\" is not supported (1.x is; formcam reads the \
-             specification up to {}.{})",
-            SPEC_VERSION.0, SPEC_VERSION.1
-        ));
+        return Err(WindFileError::VersionUnsupported { text });
     }
     let minor = minor.parse::<u32>().unwrap_or(u32::MAX);
     Ok((text, minor))
@@ -273,61 +273,59 @@ fn coverage(
     diameter: f64,
     wind_length: f64,
     width: f64,
-) -> Result<(), String> {
+) -> Result<(), WindFileError> {
     let p = h.pattern_number;
     if gcd(h.skip_index, p) != 1 {
-        return Err(format!(
-            "{}: {} and patternNumber {p} must be coprime (gcd {}) for full coverage",
-            field("skipIndex"),
-            h.skip_index,
-            gcd(h.skip_index, p)
-        ));
+        return Err(WindFileError::NotCoprime {
+            member: field("skipIndex"),
+            skip_index: h.skip_index,
+            pattern: p,
+            gcd: gcd(h.skip_index, p),
+        });
     }
     if h.lead_in_mm >= wind_length {
-        return Err(format!(
-            "{}: {} mm must be shorter than mandrelParameters.windLength ({wind_length} mm)",
-            field("leadInMM"),
-            h.lead_in_mm
-        ));
+        return Err(WindFileError::LeadInTooLong {
+            member: field("leadInMM"),
+            lead_in_mm: h.lead_in_mm,
+            wind_length_mm: wind_length,
+        });
     }
     let circuits = (std::f64::consts::PI * diameter * h.wind_angle.to_radians().cos() / width
         - 1e-9)
         .ceil()
         .max(0.0);
     if circuits % f64::from(p) != 0.0 {
-        return Err(format!(
-            "{}: {p} does not divide the layer's {circuits} circuits (pi x diameter x \
-             cos(windAngle) / tow width, rounded up); change the angle, the pattern or the tow",
-            field("patternNumber")
-        ));
+        return Err(WindFileError::PatternDoesNotDivide {
+            member: field("patternNumber"),
+            pattern: p,
+            circuits,
+        });
     }
     if p > 1 {
         let slot = 360.0 / f64::from(p);
         let half = slot / 2.0;
         let advance = (2.0 * h.lock_degrees).rem_euclid(360.0);
         let slots = advance / slot;
-        let nearest = || {
-            let k = (h.lock_degrees / half).floor().max(1.0);
-            format!("{}, {}", k * half, (k + 1.0) * half)
-        };
         if (slots - slots.round()).abs() > 1e-6 {
-            return Err(format!(
-                "{}: {} deg must be a multiple of 180 / patternNumber = {half} deg (nearest: {})",
-                field("lockDegrees"),
-                h.lock_degrees,
-                nearest()
-            ));
+            let k = (h.lock_degrees / half).floor().max(1.0);
+            return Err(WindFileError::LockOffSlot {
+                member: field("lockDegrees"),
+                lock_deg: h.lock_degrees,
+                half_slot_deg: half,
+                below_deg: k * half,
+                above_deg: (k + 1.0) * half,
+            });
         }
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let stride = (slots.round() as u32 + h.skip_index) % p;
         if gcd(stride, p) != 1 {
-            return Err(format!(
-                "{}: {} deg with skipIndex {} steps each circuit {stride} of {p} slots, which is \
-                 not coprime with patternNumber: circuits would lie on each other",
-                field("lockDegrees"),
-                h.lock_degrees,
-                h.skip_index
-            ));
+            return Err(WindFileError::LockStride {
+                member: field("lockDegrees"),
+                lock_deg: h.lock_degrees,
+                skip_index: h.skip_index,
+                stride,
+                pattern: p,
+            });
         }
     }
     Ok(())
@@ -343,21 +341,14 @@ struct Helical {
 }
 
 /// Reads the text of a `.wind` document; errors name the member.
-fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
+fn parse(text: &str, eye_clearance: f64) -> Result<Imported, WindFileError> {
     if !(eye_clearance.is_finite() && eye_clearance > 0.0) {
-        return Err(format!(
-            "--eye-clearance: must be a finite number > 0 mm, got {eye_clearance}"
-        ));
+        return Err(WindFileError::EyeClearance {
+            value: eye_clearance,
+        });
     }
-    let doc: Value = serde_json::from_str(text).map_err(|e| {
-        format!(
-            "{}:{}: {}",
-            e.line(),
-            e.column(),
-            e.to_string().replace('\n', " ")
-        )
-    })?;
-    let mut root = Obj::new("", Some(&doc)).map_err(|_| "the document must be a JSON object")?;
+    let doc: Value = serde_json::from_str(text).map_err(WindFileError::Json)?;
+    let mut root = Obj::new("", Some(&doc)).map_err(|_| WindFileError::NotADocument)?;
     let (version_text, minor) = version(root.get("schemaVersion"))?;
     let mut warnings = Vec::new();
     if minor > SPEC_VERSION.1 {
@@ -374,33 +365,27 @@ fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
     let wind_length = m.positive("windLength", "mm")?;
     let end_diameter = match m.number("endDiameter")? {
         Some(e) if e <= 0.0 => {
-            return Err(format!(
-                "mandrelParameters.endDiameter: must be > 0 mm, got {e}"
-            ));
+            return Err(WindFileError::NotPositive {
+                member: "mandrelParameters.endDiameter".into(),
+                unit: "mm",
+                value: e,
+            });
         }
         e => e,
     };
     if let Some(profile) = m.get("profile") {
         if end_diameter.is_some() {
-            return Err(
-                "mandrelParameters.profile: profile and endDiameter are mutually exclusive (a \
-                 profile defines the whole surface)"
-                    .into(),
-            );
+            return Err(WindFileError::ProfileAndEndDiameter);
         }
         let kind = profile.get("type").and_then(Value::as_str).unwrap_or("?");
-        return Err(format!(
-            "mandrelParameters.profile: a \"{kind}\" profile mandrel (1.2+) changes the \
-             geometry and formcam does not wind it yet (cylinders and reducing cones it does)"
-        ));
+        return Err(WindFileError::ProfileMandrel { kind: kind.into() });
     }
     let cone = match end_diameter {
         Some(e) if e > diameter => {
-            return Err(format!(
-                "mandrelParameters.endDiameter: {e} mm > diameter {diameter} mm is an expanding \
-                 cone; .wind cones are reducing frustums only (endDiameter < diameter: mount the \
-                 large end at z = 0)"
-            ));
+            return Err(WindFileError::ExpandingCone {
+                end_mm: e,
+                diameter_mm: diameter,
+            });
         }
         Some(e) if e < diameter => Some(e),
         _ => None,
@@ -417,7 +402,7 @@ fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
     // The layers.
     let layers = match root.get("layers") {
         Some(Value::Array(a)) => a,
-        Some(_) => return Err("layers: must be an array".into()),
+        Some(_) => return Err(WindFileError::LayersNotAnArray),
         None => return Err(root.missing("layers")),
     };
     let base = WindingSpec {
@@ -432,22 +417,23 @@ fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
         let field = |name: &str| format!("{path}.{name}");
         let kind = match l.get("windType") {
             Some(Value::String(s)) => s.clone(),
-            Some(_) => return Err(format!("{}: must be a string", field("windType"))),
+            Some(_) => {
+                return Err(WindFileError::NotAString {
+                    member: field("windType"),
+                });
+            }
             None => return Err(l.missing("windType")),
         };
-        let hoop = |l: &mut Obj<'_>, terminal: bool| -> Result<WindingSpec, String> {
+        let hoop = |l: &mut Obj<'_>, terminal: bool| -> Result<WindingSpec, WindFileError> {
             if cone.is_some() {
-                return Err(format!(
-                    "{}: a hoop layer on a cone is refused by the specification (a hoop is not a \
-                     geodesic of a cone)",
-                    l.path
-                ));
+                return Err(WindFileError::HoopOnCone {
+                    layer: l.path.clone(),
+                });
             }
             if terminal && i + 1 != layers.len() {
-                return Err(format!(
-                    "{}: a terminal hoop must be the last layer",
-                    field("terminal")
-                ));
+                return Err(WindFileError::TerminalNotLast {
+                    member: field("terminal"),
+                });
             }
             Ok(WindingSpec {
                 kind: Some(LayerKind::Hoop),
@@ -463,10 +449,10 @@ fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
             "helical" => {
                 let wind_angle = l.required("windAngle")?;
                 if !(wind_angle > 0.0 && wind_angle <= 90.0) {
-                    return Err(format!(
-                        "{}: {wind_angle} deg: a wind angle lies in (0, 90] degrees from the axis",
-                        field("windAngle")
-                    ));
+                    return Err(WindFileError::WindAngle {
+                        member: field("windAngle"),
+                        angle_deg: wind_angle,
+                    });
                 }
                 let h = Helical {
                     wind_angle,
@@ -479,31 +465,28 @@ fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
                 l.boolean("skipInitialNearLock")?;
                 match l.number("frictionLambda")? {
                     Some(f) if f < 0.0 => {
-                        return Err(format!(
-                            "{}: must be >= 0, got {f}",
-                            field("frictionLambda")
-                        ));
+                        return Err(WindFileError::FrictionNegative {
+                            member: field("frictionLambda"),
+                            value: f,
+                        });
                     }
                     Some(f) if f != 0.0 => {
-                        return Err(format!(
-                            "{}: {f}: non-geodesic winding needs a profile mandrel; a {} is \
-                             wound geodesically (0)",
-                            field("frictionLambda"),
-                            if cone.is_some() { "cone" } else { "cylinder" }
-                        ));
+                        return Err(WindFileError::FrictionNotGeodesic {
+                            member: field("frictionLambda"),
+                            value: f,
+                            cone: cone.is_some(),
+                        });
                     }
                     _ => {}
                 }
                 if let Some(e) = cone
                     && diameter * wind_angle.to_radians().sin() > e
                 {
-                    return Err(format!(
-                        "{}: {wind_angle} deg is too steep for the cone: its geodesic turns \
-                         before the small end (diameter x sin(windAngle) must be <= endDiameter; \
-                         at most {:.4} deg)",
-                        field("windAngle"),
-                        (e / diameter).asin().to_degrees()
-                    ));
+                    return Err(WindFileError::TooSteepForCone {
+                        member: field("windAngle"),
+                        angle_deg: wind_angle,
+                        max_deg: (e / diameter).asin().to_degrees(),
+                    });
                 }
                 coverage(&field, &h, diameter, wind_length, width)?;
                 if wind_angle == 90.0 {
@@ -526,10 +509,10 @@ fn parse(text: &str, eye_clearance: f64) -> Result<Imported, String> {
                 ..WindingSpec::default()
             },
             other => {
-                return Err(format!(
-                    "{}: \"{other}\" is not a layer type formcam winds (hoop, helical, skip)",
-                    field("windType")
-                ));
+                return Err(WindFileError::UnknownLayerType {
+                    member: field("windType"),
+                    kind: other.into(),
+                });
             }
         };
         l.ignored(&version_text, &mut warnings);

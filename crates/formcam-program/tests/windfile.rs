@@ -280,3 +280,46 @@ fn invalid_documents_are_refused_for_their_reason() {
         }
     }
 }
+
+/// The reader's errors are typed: the rule broken and its numbers, not a
+/// message to take apart again.
+#[test]
+fn refusals_are_typed_with_the_member_and_the_numbers() {
+    use formcam_program::{ProgramError, WindFileError};
+    let mut d = base();
+    d["layers"][1]["patternNumber"] = json!(4);
+    d["layers"][1]["skipIndex"] = json!(2);
+    match read(&d).unwrap_err() {
+        ProgramError::WindFile(WindFileError::NotCoprime {
+            member,
+            skip_index,
+            pattern,
+            gcd,
+        }) => {
+            assert_eq!(member, "layers[1].skipIndex");
+            assert_eq!((skip_index, pattern, gcd), (2, 4, 2));
+        }
+        other => panic!("not typed: {other:?}"),
+    }
+    let mut d = base();
+    d["towParameters"] = json!({ "widht": 10, "thickness": 0.3 });
+    match read(&d).unwrap_err() {
+        ProgramError::WindFile(WindFileError::Missing { member, unknown }) => {
+            assert_eq!(member, "towParameters.width");
+            assert!(
+                unknown.iter().any(|u| u == "towParameters.widht"),
+                "{unknown:?}"
+            );
+        }
+        other => panic!("not typed: {other:?}"),
+    }
+    // JSON that does not parse keeps serde_json's error as its source.
+    let e = WindJob::from_wind("{\"layers\": [", EYE_CLEARANCE_MM, &[]).unwrap_err();
+    assert!(
+        matches!(e, ProgramError::WindFile(WindFileError::Json(_))),
+        "{e:?}"
+    );
+    let source = std::error::Error::source(&e).map(ToString::to_string);
+    assert!(source.is_some_and(|s| s.contains("EOF")), "{e}");
+    assert!(e.to_string().starts_with("1:"), "{e}");
+}

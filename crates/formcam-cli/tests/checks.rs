@@ -4,54 +4,15 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-use serde_json::Value;
+use std::path::Path;
+use std::process::Output;
 
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("formcam-checks-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// An example job with its machine paths made absolute.
-fn example(name: &str) -> String {
-    std::fs::read_to_string(repo().join("examples").join(name))
-        .unwrap()
-        .replace("../machines/", &format!("{}/machines/", repo().display()))
-}
-
-/// Runs `formcam ARGS... JOB -o OUT` on `text` written to a scratch folder.
-fn run(name: &str, args: &[&str], text: &str) -> (Output, PathBuf) {
-    let dir = scratch(name);
-    let path = dir.join("job.toml");
-    std::fs::write(&path, text).unwrap();
-    let out = dir.join("out");
-    let st = Command::new(env!("CARGO_BIN_EXE_formcam"))
-        .args(args)
-        .arg(&path)
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
-    (st, out)
-}
-
-fn summary(out: &Path) -> Value {
-    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
-}
+use common::{example, machines, ok, one_line_error, repo, run_job as run, scratch, summary};
 
 fn refused(name: &str, st: &Output, out: &Path, want: &[&str]) {
-    let err = String::from_utf8_lossy(&st.stderr).trim_end().to_string();
-    assert!(!st.status.success(), "{name}: accepted");
-    assert!(!out.exists(), "{name}: wrote output");
-    assert_eq!(err.lines().count(), 1, "{name}: {err}");
+    let err = one_line_error(name, st, out);
     for w in want {
         assert!(err.contains(w), "{name}: wants {w:?}: {err}");
     }
@@ -64,11 +25,7 @@ fn refused(name: &str, st: &Output, out: &Path, want: &[&str]) {
 fn a_slack_band_refuses_the_program_unless_accepted() {
     let good = example("tube-axes-2axis.toml");
     let (st, out) = run("2axis", &["wind"], &good);
-    assert!(
-        st.status.success(),
-        "{}",
-        String::from_utf8_lossy(&st.stderr)
-    );
+    ok("checks", &st);
     let s = summary(&out);
     assert_eq!(s["constraints_ok"], true);
     assert_eq!(s["checks_accepted"], serde_json::json!([]));
@@ -94,11 +51,7 @@ fn a_slack_band_refuses_the_program_unless_accepted() {
 
     let accepted = format!("{slack}\n[checks]\nallow = [\"slack\"]\n");
     let (st, out) = run("2axis-accepted", &["wind"], &accepted);
-    assert!(
-        st.status.success(),
-        "{}",
-        String::from_utf8_lossy(&st.stderr)
-    );
+    ok("checks", &st);
     let s = summary(&out);
     assert_eq!(s["checks_accepted"], serde_json::json!(["slack"]));
     assert_eq!(s["checks_violated"][0]["check"], "slack");
@@ -125,14 +78,14 @@ fn a_slack_band_refuses_the_program_unless_accepted() {
 /// Beyond an axis limit: refused, or written when `limits` is accepted.
 #[test]
 fn a_limit_is_a_check_that_can_be_accepted() {
-    let machine = std::fs::read_to_string(repo().join("machines/winder-4axis.toml"))
+    let machine = std::fs::read_to_string(machines().join("winder-4axis.toml"))
         .unwrap()
         .replace("max_mm = 3000.0", "max_mm = 100.0");
     let dir = scratch("limits-machine");
     let m = dir.join("m.toml");
     std::fs::write(&m, machine).unwrap();
     let job = example("vessel-program-840d.toml").replace(
-        &format!("{}/machines/winder-4axis.toml", repo().display()),
+        &machines().join("winder-4axis.toml").display().to_string(),
         &m.display().to_string(),
     );
     let (st, out) = run("limits", &["wind"], &job);
@@ -147,11 +100,7 @@ fn a_limit_is_a_check_that_can_be_accepted() {
         &["wind"],
         &format!("{job}\n[checks]\nallow = [\"limits\"]\n"),
     );
-    assert!(
-        st.status.success(),
-        "{}",
-        String::from_utf8_lossy(&st.stderr)
-    );
+    ok("checks", &st);
     let s = summary(&out);
     assert_eq!(s["checks_accepted"], serde_json::json!(["limits"]));
     let x = s["axis_ranges"]
@@ -227,11 +176,7 @@ fn implausible_values_warn_on_stderr_and_in_the_summary() {
     let slow = dress.replacen("feed_min = ", "feed_min = 0.5 #", 1);
     assert_ne!(slow, dress);
     let (st, out) = run("dress-slow", &["dress"], &slow);
-    assert!(
-        st.status.success(),
-        "{}",
-        String::from_utf8_lossy(&st.stderr)
-    );
+    ok("checks", &st);
     assert!(String::from_utf8_lossy(&st.stderr).contains("process.feed_min"));
     assert!(
         summary(&out)["warnings"][0]
@@ -277,11 +222,7 @@ fn ranges_cover_every_block(name: &str, out: &Path) {
 fn the_summary_and_the_files_describe_the_whole_program() {
     // One layer: the spindle's range covers every circuit, not one.
     let (st, out) = run("one-layer", &["wind"], &example("vessel-program-840d.toml"));
-    assert!(
-        st.status.success(),
-        "{}",
-        String::from_utf8_lossy(&st.stderr)
-    );
+    ok("checks", &st);
     ranges_cover_every_block("one-layer", &out);
     let s = summary(&out);
     let (header, circuit) = csv(&out.join("axes.csv"));
@@ -306,11 +247,7 @@ fn the_summary_and_the_files_describe_the_whole_program() {
 
     // Several layers: each layer's own outputs, and the axes over the program.
     let (st, out) = run("layers", &["wind"], &example("tube-layers-4axis.toml"));
-    assert!(
-        st.status.success(),
-        "{}",
-        String::from_utf8_lossy(&st.stderr)
-    );
+    ok("checks", &st);
     ranges_cover_every_block("layers", &out);
     let s = summary(&out);
     let per_layer = s["per_layer"].as_array().unwrap();

@@ -3,26 +3,11 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
 
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("formcam-demo-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+use std::process::Output;
 
-fn demo(examples: &std::path::Path, out: &std::path::Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_formcam"))
-        .arg("demo")
-        .arg("--examples")
-        .arg(examples)
-        .arg("-o")
-        .arg(out)
-        .output()
-        .unwrap()
-}
+use common::{demo, scratch};
 
 /// The one line of stderr, checked to be one line.
 fn error_line(o: &Output) -> String {

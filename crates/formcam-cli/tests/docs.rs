@@ -5,14 +5,13 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use std::collections::BTreeSet;
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
+use common::{demo, repo as root};
 
 /// Which docs page documents a job's outputs; `None` for jobs another page
 /// and its own test cover (dressing).
@@ -89,14 +88,7 @@ fn every_column_and_key_the_examples_write_is_documented() {
     let out = std::env::temp_dir().join(format!("formcam-docs-{}", std::process::id()));
     let _ = fs::remove_dir_all(&out);
     let examples = root().join("examples");
-    let st = Command::new(env!("CARGO_BIN_EXE_formcam"))
-        .arg("demo")
-        .arg("--examples")
-        .arg(&examples)
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let st = demo(&examples, &out);
     assert!(
         st.status.success(),
         "{}",

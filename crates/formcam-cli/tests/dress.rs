@@ -3,36 +3,30 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
+
+use std::ffi::OsStr;
+use std::path::Path;
+use std::process::Output;
+
+use common::{formcam, ok, scratch};
 
 const EXAMPLE: &str = include_str!("../../../examples/dress-ballscrew-nut.toml");
 
-fn formcam() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_formcam"))
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("formcam-dress-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 /// Writes `text` as a job in a fresh folder and runs `formcam dress` on it.
-fn run_job(name: &str, text: &str) -> (Output, PathBuf) {
-    let dir = scratch(name);
-    let job = dir.join("job.toml");
-    std::fs::write(&job, text).unwrap();
-    let out = dir.join("out");
-    let o = formcam()
+fn run_job(name: &str, text: &str) -> (Output, std::path::PathBuf) {
+    common::run_job(name, &["dress"], text)
+}
+
+/// `formcam dress JOB -o OUT`.
+fn dress(job: impl AsRef<OsStr>, out: impl AsRef<OsStr>) -> Output {
+    formcam()
         .arg("dress")
-        .arg(&job)
+        .arg(job)
         .arg("-o")
-        .arg(&out)
+        .arg(out)
         .output()
-        .unwrap();
-    (o, out)
+        .unwrap()
 }
 
 fn read(out: &Path, file: &str) -> String {
@@ -54,7 +48,7 @@ fn the_seed_job_writes_its_files() {
     // The outputs' contents are checked in formcam-run's tests; here what
     // the command writes and prints.
     let (o, out) = run_job("good", EXAMPLE);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    ok("dress", &o);
     let line = String::from_utf8_lossy(&o.stdout);
     assert_eq!(line.lines().count(), 1, "{line}");
     assert!(
@@ -153,13 +147,7 @@ fn an_unwritable_output_leaves_no_program() {
     // The output folder's place is taken by a file.
     let out = dir.join("out");
     std::fs::write(&out, "not a folder").unwrap();
-    let o = formcam()
-        .arg("dress")
-        .arg(&job)
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = dress(&job, &out);
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(String::from_utf8_lossy(&o.stderr).lines().count(), 1);
     assert_eq!(std::fs::read_to_string(&out).unwrap(), "not a folder");
@@ -181,14 +169,8 @@ fn a_worn_contour_from_a_file() {
     let job = EXAMPLE.replace("depth = 0.05", "initial_contour = \"worn.csv\"");
     std::fs::write(dir.join("job.toml"), job).unwrap();
     let out = dir.join("out");
-    let o = formcam()
-        .arg("dress")
-        .arg(dir.join("job.toml"))
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = dress(dir.join("job.toml"), &out);
+    ok("dress", &o);
     let summary: serde_json::Value = serde_json::from_str(&read(&out, "summary.json")).unwrap();
     assert!(summary["area_identity_rel_error"].as_f64().unwrap().abs() < 1e-9);
     assert!(
@@ -197,25 +179,13 @@ fn a_worn_contour_from_a_file() {
     );
     // A contour below the profile is refused.
     std::fs::write(dir.join("worn.csv"), "z,x\n-3,0\n3,0\n").unwrap();
-    let o = formcam()
-        .arg("dress")
-        .arg(dir.join("job.toml"))
-        .arg("-o")
-        .arg(dir.join("out2"))
-        .output()
-        .unwrap();
+    let o = dress(dir.join("job.toml"), dir.join("out2"));
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2));
     assert!(err.contains("process.initial_contour: it lies"), "{err}");
     // A line that cannot be read: the file and the line.
     std::fs::write(dir.join("worn.csv"), "z,x\n-3,2\n0,two\n3,2\n").unwrap();
-    let o = formcam()
-        .arg("dress")
-        .arg(dir.join("job.toml"))
-        .arg("-o")
-        .arg(dir.join("out3"))
-        .output()
-        .unwrap();
+    let o = dress(dir.join("job.toml"), dir.join("out3"));
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(err.lines().count(), 1, "{err}");
@@ -233,15 +203,8 @@ fn the_demo_runs_the_dressing_example() {
     std::fs::create_dir_all(&examples).unwrap();
     std::fs::write(examples.join("dress-ballscrew-nut.toml"), EXAMPLE).unwrap();
     let out = dir.join("out");
-    let o = formcam()
-        .arg("demo")
-        .arg("--examples")
-        .arg(&examples)
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = common::demo(&examples, &out);
+    ok("dress", &o);
     assert!(out.join("dress-ballscrew-nut/program.cls").exists());
     assert!(out.join("dress-ballscrew-nut/summary.json").exists());
 }
@@ -249,20 +212,14 @@ fn the_demo_runs_the_dressing_example() {
 #[test]
 fn a_folder_in_the_way_leaves_the_last_run_whole() {
     let (o, out) = run_job("in-the-way", EXAMPLE);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    ok("dress", &o);
     let profile = read(&out, "profile.csv");
     let summary = read(&out, "summary.json");
     std::fs::remove_file(out.join("mrr.csv")).unwrap();
     std::fs::create_dir(out.join("mrr.csv")).unwrap();
     let job = out.parent().unwrap().join("job.toml");
     std::fs::write(&job, EXAMPLE.replace("step = 0.01", "step = 0.02")).unwrap();
-    let o = formcam()
-        .arg("dress")
-        .arg(&job)
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = dress(&job, &out);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("a folder is in the way"));
     assert_eq!(read(&out, "profile.csv"), profile);

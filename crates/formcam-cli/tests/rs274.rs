@@ -11,17 +11,10 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
+use common::{examples, scratch};
 use formcam_nc::{AxisSpec, Dialect, read_gcode_in};
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("formcam-rs274-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// Whether `rs274` runs here; fails when it must.
 fn rs274_present() -> bool {
@@ -114,7 +107,7 @@ fn linuxcnc_reads_our_program_to_the_same_positions_and_time() {
     }
     let dir = scratch("layers");
     let out = dir.join("out");
-    let job = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/tube-layers-4axis.toml");
+    let job = examples().join("tube-layers-4axis.toml");
     common::wind_ok(&job, &out);
     let program = std::fs::read_to_string(out.join("program.ngc")).unwrap();
 

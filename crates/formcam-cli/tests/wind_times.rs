@@ -4,21 +4,15 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::path::PathBuf;
-use std::process::Command;
+mod common;
+
+use common::{formcam, scratch};
 
 /// The issue's job (`pairwise 6334.65 s, global 25616.37 s` before the
 /// global times were fixed), its patterns made to divide the layers' circuits
 /// (55 and 75) as `.wind` readers now require. Its joins between layers broke
 /// the jump limits up to 18.6x before they were timed with the layers.
 const ISSUE_JOB: &str = r#"{"schemaVersion": "1.0", "mandrelParameters": {"diameter": 160, "windLength": 1200}, "towParameters": {"width": 5, "thickness": 0.3}, "defaultFeedRate": 2000, "layers": [{"windType": "hoop", "terminal": false}, {"windType": "helical", "windAngle": 57, "patternNumber": 5, "skipIndex": 1, "lockDegrees": 720, "leadInMM": 25, "leadOutDegrees": 60}, {"windType": "hoop", "terminal": false}, {"windType": "helical", "windAngle": 26, "patternNumber": 1, "skipIndex": 1, "lockDegrees": 540, "leadInMM": 25, "leadOutDegrees": 60}, {"windType": "hoop", "terminal": false}, {"windType": "helical", "windAngle": 45, "patternNumber": 2, "skipIndex": 1, "lockDegrees": 720, "leadInMM": 25, "leadOutDegrees": 60}, {"windType": "hoop", "terminal": false}, {"windType": "helical", "windAngle": 42, "patternNumber": 5, "skipIndex": 1, "lockDegrees": 720, "leadInMM": 25, "leadOutDegrees": 60}]}"#;
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("formcam-times-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// The issue's job exactly as it was filed: the format's specification asks a
 /// reader to refuse it (4 divides neither layer's circuit count, 55 and 75),
@@ -33,7 +27,7 @@ fn the_issue_job_as_filed_is_refused_for_its_patterns() {
     );
     assert_ne!(filed, ISSUE_JOB);
     std::fs::write(&path, &filed).unwrap();
-    let st = Command::new(env!("CARGO_BIN_EXE_formcam"))
+    let st = formcam()
         .arg("wind")
         .arg(&path)
         .arg("-o")

@@ -1,63 +1,33 @@
-//! `.wind` documents against the format's specification (schema 1.3): a corpus
-//! of valid documents that must plan and invalid ones that must be refused for
-//! their stated reason, written here from the specification's rules.
+//! `formcam wind DOC.wind` as users meet it: its options (`--eye-clearance`,
+//! `--allow`), warnings on stderr, one-line errors with nothing written. The
+//! documents' plans are tested in formcam-run, the reader's rules in
+//! formcam-program.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
 
+use common::{ok, one_line_error, run_file, stderr, summary};
 use serde_json::{Value, json};
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("formcam-windfile-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// Runs `formcam wind DOC.wind -o OUT EXTRA...`; returns the output and `OUT`.
 fn wind(name: &str, doc: &Value, extra: &[&str]) -> (Output, PathBuf) {
-    let dir = scratch(name);
-    let path = dir.join("job.wind");
-    std::fs::write(&path, serde_json::to_string_pretty(doc).unwrap()).unwrap();
-    let out = dir.join("out");
-    let st = Command::new(env!("CARGO_BIN_EXE_formcam"))
-        .arg("wind")
-        .arg(&path)
-        .arg("-o")
-        .arg(&out)
-        .args(extra)
-        .output()
-        .unwrap();
-    (st, out)
-}
-
-fn summary(out: &std::path::Path) -> Value {
-    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+    let text = serde_json::to_string_pretty(doc).unwrap();
+    run_file(name, &["wind"], "job.wind", &text, &[], extra)
 }
 
 /// A valid 1.0 document: a cylinder 100 mm across, a hoop and a helical layer
-/// whose 24 circuits (pi 100 cos 41 deg / 10, rounded up) three divide, with a
-/// lockDegrees of a multiple of 60 deg stepping the circuits onto distinct slots.
+/// whose 24 circuits three divide.
 fn base() -> Value {
     json!({
         "schemaVersion": "1.0",
         "mandrelParameters": { "diameter": 100, "windLength": 400 },
         "towParameters": { "width": 10, "thickness": 0.3 },
         "defaultFeedRate": 1500,
-        "layers": [
-            { "windType": "hoop", "terminal": false },
-            {
-                "windType": "helical",
-                "windAngle": 41,
-                "patternNumber": 3,
-                "skipIndex": 1,
-                "lockDegrees": 180,
-                "leadInMM": 10,
-                "leadOutDegrees": 10
-            }
-        ]
+        "layers": [{ "windType": "hoop", "terminal": false }, helical(41.0, 3, 180.0)]
     })
 }
 
@@ -73,93 +43,27 @@ fn helical(angle: f64, pattern: u32, lock: f64) -> Value {
     })
 }
 
-fn plans(name: &str, doc: &Value) -> (Value, String) {
-    plans_with(name, doc, &[])
-}
-
-fn plans_with(name: &str, doc: &Value, extra: &[&str]) -> (Value, String) {
-    let (st, out) = wind(name, doc, extra);
-    assert!(
-        st.status.success(),
-        "{name}: {}",
-        String::from_utf8_lossy(&st.stderr)
-    );
-    assert!(out.join("program.gcode").exists(), "{name}");
-    (summary(&out), String::from_utf8_lossy(&st.stderr).into())
+/// A small tube whose short lock lets the band go slack at the turn-arounds.
+fn slack_tube() -> Value {
+    json!({
+        "mandrelParameters": { "diameter": 60, "windLength": 300 },
+        "towParameters": { "width": 6, "thickness": 0.3 },
+        "defaultFeedRate": 3000,
+        "layers": [helical(20.0, 1, 180.0)]
+    })
 }
 
 #[test]
-fn valid_documents_plan() {
-    let mut corpus: Vec<(&str, Value)> = vec![("base", base())];
-    // An absent schemaVersion is 1.0.
-    let mut d = base();
-    d.as_object_mut().unwrap().remove("schemaVersion");
-    corpus.push(("no-version", d));
-    // A later minor of the same major is read.
-    let mut d = base();
-    d["schemaVersion"] = json!("1.12");
-    corpus.push(("later-minor", d));
-    // The first layer may be a skip: the mandrel turns before winding.
-    let mut d = base();
-    d["layers"] = json!([
-        { "windType": "skip", "mandrelRotation": 90 },
-        helical(41.0, 3, 180.0),
-        { "windType": "skip", "mandrelRotation": -45.5 },
-        { "windType": "hoop", "terminal": true }
-    ]);
-    corpus.push(("first-skip", d));
-    // A reducing cone (1.1) with a helical layer that reaches its small end
-    // (98 sin 30 deg = 49 <= 54), 45 circuits in patterns of three.
-    let mut d = base();
-    d["schemaVersion"] = json!("1.1");
-    d["mandrelParameters"] = json!({ "diameter": 98, "windLength": 120, "endDiameter": 54 });
-    d["towParameters"] = json!({ "width": 6, "thickness": 0.25 });
-    d["layers"] = json!([helical(30.0, 3, 180.0)]);
-    corpus.push(("cone", d));
-    // An endDiameter equal to the diameter is a cylinder.
-    let mut d = base();
-    d["mandrelParameters"]["endDiameter"] = json!(100);
-    corpus.push(("cone-of-no-taper", d));
-    // frictionLambda 0 (1.3) is the geodesic; windAngle 90 is the hoop limit.
-    let mut d = base();
-    d["schemaVersion"] = json!("1.3");
-    d["layers"][1]["frictionLambda"] = json!(0);
-    d["layers"][1]["skipInitialNearLock"] = json!(true);
-    d["layers"]
-        .as_array_mut()
-        .unwrap()
-        .push(helical(90.0, 1, 180.0));
-    corpus.push(("friction-zero-and-90", d));
-    // No layers: a program without motion.
-    let mut d = base();
-    d["layers"] = json!([]);
-    corpus.push(("no-layers", d));
-    for (name, doc) in &corpus {
-        let (s, _) = plans(name, doc);
-        assert_eq!(s["machine"], "X/A/B winder", "{name}");
-        assert!(s["checks_violated"].as_array().is_some(), "{name}");
-    }
-}
-
-#[test]
-fn unknown_members_are_ignored_with_a_warning() {
+fn unknown_members_are_warned_of_on_stderr() {
     let mut d = base();
     d["generator"] = json!("some CAD plug-in 4.2");
-    d["mandrelParameters"]["material"] = json!("aluminium");
     d["layers"][1]["note"] = json!({ "text": "outer helical" });
-    let (s, stderr) = plans("unknown-members", &d);
-    let warnings: Vec<String> = s["warnings"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|w| w.as_str().unwrap().to_string())
-        .collect();
-    for member in ["generator", "mandrelParameters.material", "layers[1].note"] {
-        assert!(
-            warnings.iter().any(|w| w.starts_with(member)),
-            "{member}: {warnings:?}"
-        );
-        assert!(stderr.contains(member), "{member}: {stderr}");
+    let (st, out) = wind("unknown-members", &d, &[]);
+    ok("unknown-members", &st);
+    assert!(out.join("program.gcode").exists());
+    let err = stderr(&st);
+    for member in ["generator", "layers[1].note"] {
+        assert!(err.contains(member), "{member}: {err}");
     }
 }
 
@@ -194,10 +98,7 @@ fn invalid_documents_fail_with_one_line_and_write_nothing() {
         let mut d = base();
         edit(&mut d);
         let (st, out) = wind(name, &d, &[]);
-        let err = String::from_utf8_lossy(&st.stderr).trim_end().to_string();
-        assert!(!st.status.success(), "{name}: accepted");
-        assert!(!out.exists(), "{name}: wrote output");
-        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+        let err = one_line_error(name, &st, &out);
         assert!(err.contains("job.wind"), "{name}: {err}");
         for w in want {
             assert!(err.contains(w), "{name}: wants {w:?}: {err}");
@@ -205,98 +106,34 @@ fn invalid_documents_fail_with_one_line_and_write_nothing() {
     }
 }
 
-/// Shallow helical layers on a small mandrel: the eye rides over the mandrel
-/// (its radius plus the clearance), so the carriage stays near the band and
-/// within its travel.
 #[test]
-fn shallow_helicals_on_small_mandrels_are_wound_with_the_eye_over_the_mandrel() {
-    let machine = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../machines/winder-xab.toml"),
-    )
-    .unwrap();
-    assert!(machine.contains("min_mm = -600.0") && machine.contains("max_mm = 3000.0"));
-    for angle in [20.0, 25.0, 30.0] {
-        let doc = json!({
-            "mandrelParameters": { "diameter": 60, "windLength": 300 },
-            "towParameters": { "width": 6, "thickness": 0.3 },
-            "defaultFeedRate": 3000,
-            "layers": [helical(angle, 1, 720.0)]
-        });
-        let name = format!("shallow-{angle}");
-        let (s, _) = plans(&name, &doc);
-        assert_eq!(s["eye_radius_mm"].as_f64().unwrap(), 30.0 + 25.0);
-        assert_eq!(s["eye_clearance_mm"].as_f64().unwrap(), 25.0);
-        let x = s["axis_ranges"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .find(|r| r["axis"] == "X")
-            .unwrap();
-        let (lo, hi) = (x["min"].as_f64().unwrap(), x["max"].as_f64().unwrap());
-        // The carriage stays within its travel: the eye leads the band by its
-        // axial lead sqrt(R^2 - r^2) / tan(angle) (plus the turn-around on the
-        // tube's extension), 127 mm at 20 deg, where an eye 250 mm out would
-        // lead by 682 mm, beyond the carriage's -600 mm.
-        let lead = |r_eye: f64| (r_eye * r_eye - 30.0f64.powi(2)).sqrt() / angle.to_radians().tan();
-        let overrun = (-lo).max(hi - 300.0);
-        assert!(lo > -600.0 && hi < 3000.0, "{name}: X in [{lo}, {hi}]");
-        assert!(
-            overrun > lead(55.0) && overrun < lead(55.0) + 60.0,
-            "{name}: X in [{lo}, {hi}], lead {}",
-            lead(55.0)
-        );
-        assert!(lead(250.0) > 4.0 * lead(55.0));
-        // Only the eye's slack may be accepted for a .wind job, and it is said.
-        for v in s["checks_violated"].as_array().unwrap() {
-            assert_eq!(v["check"], "slack", "{name}: {v}");
-        }
-    }
+fn the_eye_clearance_is_an_option() {
     let doc = json!({
         "mandrelParameters": { "diameter": 60, "windLength": 300 },
         "towParameters": { "width": 6, "thickness": 0.3 },
         "defaultFeedRate": 3000,
         "layers": [helical(25.0, 1, 720.0)]
     });
-    let (s, _) = plans_with("clearance-40", &doc, &["--eye-clearance", "40"]);
-    assert_eq!(s["eye_radius_mm"].as_f64().unwrap(), 70.0);
+    let (st, out) = wind("clearance-40", &doc, &["--eye-clearance", "40"]);
+    ok("clearance-40", &st);
+    assert_eq!(summary(&out)["eye_radius_mm"].as_f64().unwrap(), 70.0);
     let (st, out) = wind("clearance-0", &doc, &["--eye-clearance", "0"]);
-    assert!(!st.status.success() && !out.exists());
-    assert!(String::from_utf8_lossy(&st.stderr).contains("--eye-clearance"));
+    assert!(one_line_error("clearance-0", &st, &out).contains("--eye-clearance"));
 }
 
-/// An accepted failed check is named in the summary and in the program's header.
+/// `--allow` takes check names; a typo is refused, other names accepted, and
+/// the slack a `.wind` job always accepts is said in the summary.
 #[test]
-fn accepted_slack_is_reported_in_the_summary_and_the_header() {
-    // A short lock lets the band go slack at the turn-arounds.
-    let doc = json!({
-        "mandrelParameters": { "diameter": 60, "windLength": 300 },
-        "towParameters": { "width": 6, "thickness": 0.3 },
-        "defaultFeedRate": 3000,
-        "layers": [helical(20.0, 1, 180.0)]
-    });
+fn allow_takes_check_names() {
+    let doc = slack_tube();
     let (st, out) = wind("allow-typo", &doc, &["--allow", "timing,slak"]);
     assert!(!st.status.success() && !out.exists());
-    assert!(String::from_utf8_lossy(&st.stderr).contains("slak"));
-    let (st, _) = wind("allow-more", &doc, &["--allow", "timing,limits"]);
+    assert!(stderr(&st).contains("slak"));
+    let (st, out) = wind("allow-more", &doc, &["--allow", "timing,limits"]);
+    ok("allow-more", &st);
+    let accepted = summary(&out)["checks_accepted"].clone();
     assert!(
-        st.status.success(),
-        "{}",
-        String::from_utf8_lossy(&st.stderr)
-    );
-    let (st, out) = wind("slack", &doc, &[]);
-    assert!(
-        st.status.success(),
-        "{}",
-        String::from_utf8_lossy(&st.stderr)
-    );
-    let s = summary(&out);
-    assert_eq!(s["checks_accepted"], json!(["slack"]));
-    let program = std::fs::read_to_string(out.join("program.gcode")).unwrap();
-    let header: Vec<&str> = program.lines().take(10).collect();
-    assert!(
-        header
-            .iter()
-            .any(|l| l.contains("checks accepted as violated") && l.contains("slack")),
-        "{header:?}"
+        accepted.as_array().unwrap().contains(&json!("slack")),
+        "{accepted}"
     );
 }

@@ -2,29 +2,13 @@
 //! `formcam correct` and `formcam correct simulate` as result files: the
 //! corrected program, the report and its history, the plots, the loop.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
-use formcam_correct::{CorrectionJob, Settings};
-use formcam_run::{History, RunOutput, correct, correct_job, correct_simulate};
-
-fn examples() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("formcam-run-correct-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn text(run: &RunOutput, name: &str) -> String {
-    String::from_utf8(run.file(name).unwrap().bytes.clone()).unwrap()
-}
-
-fn json(bytes: &[u8]) -> serde_json::Value {
-    serde_json::from_slice(bytes).unwrap()
-}
+use common::{examples, json, scratch, text};
+use formcam_correct::{CorrectionJob, Interpolation, Options, Settings, Tool};
+use formcam_run::{History, correct, correct_job, correct_simulate};
 
 /// A CMM report of a flat plate z = 0 in 3 sections x `xs`, `dz(x)` high.
 fn plate(dir: &Path, xs: &[f64], dz: impl Fn(f64) -> f64) -> PathBuf {
@@ -293,4 +277,250 @@ fn the_closed_loop_converges() {
         e.to_string().starts_with("loop.toml: program.step = 0"),
         "{e}"
     );
+}
+
+/// An ISO program over the plate with comments, modal words, an arc and a
+/// rapid move.
+fn plate_program(dir: &Path) -> PathBuf {
+    let prog = "%\nO100 (PLATE)\nN10 G21 G90 G17\nN20 T1 M6 (TOOL)\nN30 G0 X10. Y10. Z20.\n\
+                N40 G1 Z0. F800.\nN50 X100.\nN60 G3 X100. Y30. I0. J10.\nN70 G1 X10. ; back\n\
+                N80 G0 Z20.\nM30\n%\n";
+    let p = dir.join("plate.nc");
+    std::fs::write(&p, prog).unwrap();
+    p
+}
+
+/// The error of a correction that must fail, checked to be one line.
+fn refused(job: &CorrectionJob, output: &Path) -> String {
+    let e = match correct(job, output, None) {
+        Ok(_) => panic!("{}: accepted", output.display()),
+        Err(e) => e.to_string(),
+    };
+    assert_eq!(e.lines().count(), 1, "{e}");
+    e
+}
+
+#[test]
+fn a_constant_error_is_removed_and_other_lines_are_kept() {
+    let dir = scratch("constant");
+    let m = plate(&dir, &[0.0, 40.0, 80.0, 120.0], |_| 0.1);
+    let p = plate_program(&dir);
+    let done = correct(
+        &job(m.clone(), p, Settings::default()),
+        &dir.join("out/corrected.nc"),
+        None,
+    )
+    .unwrap();
+    let corrected = text(&done.run, "corrected.nc");
+    let lines: Vec<&str> = corrected.lines().collect();
+    // The header says the arc was linearised (after % and the O line).
+    assert!(
+        lines[2].starts_with("(formcam correct: 1 arc blocks"),
+        "{corrected}"
+    );
+    // Every line that is not a motion block is kept byte for byte.
+    for keep in [
+        "%",
+        "O100 (PLATE)",
+        "N10 G21 G90 G17",
+        "N20 T1 M6 (TOOL)",
+        "N30 G0 X10. Y10. Z20.",
+        "N80 G0 Z20.",
+        "M30",
+    ] {
+        assert!(lines.contains(&keep), "{keep} missing:\n{corrected}");
+    }
+    // Feed moves go 0.1 mm down, in the program's number format.
+    assert!(
+        lines.contains(&"N40 G1 Z-.1 F800.") || lines.contains(&"N40 G1 Z-0.1 F800."),
+        "{corrected}"
+    );
+    assert!(lines.contains(&"N50 X100."), "{corrected}");
+    assert!(
+        lines.iter().any(|l| l.starts_with("N60 G1 X")),
+        "{corrected}"
+    );
+    assert!(lines.contains(&"N70 G1 X10. ; back"), "{corrected}");
+    let r = json(&done.run.file("corrected.report.json").unwrap().bytes);
+    for key in [
+        "nodes",
+        "nodes_corrected",
+        "nodes_outside",
+        "max_deviation_mm",
+        "rms_deviation_mm",
+        "max_displacement_mm",
+    ] {
+        assert!(r.get(key).is_some(), "report lacks {key}");
+    }
+    assert_eq!(r["nodes_outside"], 0);
+    assert!((r["max_deviation_mm"].as_f64().unwrap() - 0.1).abs() < 1e-12);
+    assert!((r["max_displacement_mm"].as_f64().unwrap() - 0.1).abs() < 1e-12);
+    assert_eq!(r["arcs_linearised"], 1);
+    assert!(done.run.file("corrected.deviations.svg").is_some());
+    assert!(done.run.file("corrected.displacement.svg").is_some());
+    // Every node of the corrected program is at z = -0.1 except rapids.
+    for l in &lines {
+        if l.contains('Z') && !l.contains("G0") {
+            assert!(l.contains("Z-.1") || l.contains("Z-0.1"), "{l}");
+        }
+    }
+    // Iterating: the corrected program corrected again from the next part,
+    // with bicubic patches, goes down by as much again.
+    let first = dir.join("corrected.nc");
+    std::fs::write(&first, &corrected).unwrap();
+    let bicubic = Settings {
+        options: Options {
+            interpolation: Interpolation::Bicubic,
+            ..Options::default()
+        },
+        ..Settings::default()
+    };
+    let again = correct(&job(m, first, bicubic), Path::new("corrected-2.nc"), None).unwrap();
+    let second = text(&again.run, "corrected-2.nc");
+    assert!(
+        second.contains("N50 X100. Z-.2") || second.contains("Z-0.2"),
+        "{second}"
+    );
+}
+
+#[test]
+fn bad_input_is_refused_with_one_line_naming_the_problem() {
+    let dir = scratch("bad");
+    let m = plate(&dir, &[0.0, 40.0, 80.0, 120.0], |_| 0.1);
+    let p = plate_program(&dir);
+    let head = "section,point,x_nom,y_nom,z_nom,x_act,y_act,z_act\n";
+    let write = |name: &str, text: &str| {
+        let f = dir.join(name);
+        std::fs::write(&f, text).unwrap();
+        f
+    };
+    let one = write(
+        "one.csv",
+        &format!("{head}A,1,0,0,0,0,0,0\nA,2,1,0,0,1,0,0\nB,1,0,1,0,0,1,0\n"),
+    );
+    let rev = write(
+        "rev.csv",
+        &format!("{head}A,1,0,0,0,0,0,0\nA,2,1,0,0,1,0,0\nB,1,1,1,0,1,1,0\nB,2,0,1,0,0,1,0\n"),
+    );
+    let dup = write(
+        "dup.csv",
+        &format!("{head}A,1,0,0,0,0,0,0\nA,1,1,0,0,1,0,0\n"),
+    );
+    let nan = write("nan.csv", &format!("{head}A,1,0,0,0,0,0,NaN\n"));
+    let bad_prog = write("bad.nc", "G0 X0 Y0 Z0\nG1 X1.2.3\n");
+    let empty = write("empty.nc", "");
+    let cases = [
+        (one, p.clone(), "section `B` has 1 point"),
+        (rev, p.clone(), "runs the other way"),
+        (dup, p.clone(), "given twice"),
+        (nan, p, "is not finite"),
+        (m.clone(), bad_prog, "line 2: `G1 X1.2.3`"),
+        (m, empty, "empty"),
+    ];
+    for (k, (meas, prog, want)) in cases.into_iter().enumerate() {
+        let e = refused(&job(meas, prog, Settings::default()), Path::new("x.nc"));
+        assert!(e.contains(want), "case {k}: {e}");
+    }
+}
+
+#[test]
+fn the_bundled_correction_example_leaves_the_u_turns_alone() {
+    let ball = Settings {
+        options: Options {
+            tool: Tool::Ball { radius: 6.0 },
+            ..Options::default()
+        },
+        ..Settings::default()
+    };
+    let j = job(
+        examples().join("correct/cmm.csv"),
+        examples().join("correct/mould.nc"),
+        ball,
+    );
+    let done = correct(&j, Path::new("corrected.nc"), None).unwrap();
+    let r = json(&done.run.file("corrected.report.json").unwrap().bytes);
+    // The U-turns beyond the panel's ends are outside and left alone.
+    assert_eq!(r["arcs_linearised"], 30);
+    assert!(r["nodes_outside"].as_u64().unwrap() > 1000);
+}
+
+#[test]
+fn the_bundled_jobs_plots_say_what_they_show() {
+    let path = examples().join("correct-mould.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let run = correct_job(&path, &text, Path::new("out")).unwrap();
+    let svg = |name: &str| String::from_utf8(run.file(name).unwrap().bytes.clone()).unwrap();
+    // The deviation plot's legend names sections; the displacement map has
+    // a colour bar and a legend for its markers.
+    let has = |svg: &str, want: &str| texts(svg).iter().any(|(_, t)| t == want);
+    let dev = svg("corrected.deviations.svg");
+    assert!(has(&dev, "section X0.0"), "{dev}");
+    let map = svg("corrected.displacement.svg");
+    for want in ["displacement, mm", "measured point"] {
+        assert!(has(&map, want), "{want} missing");
+    }
+    // The colour bar's labels are distinct numbers.
+    let bar: Vec<String> = texts(&map)
+        .into_iter()
+        .filter(|(a, t)| a == "end" && t.parse::<f64>().is_ok())
+        .map(|(_, t)| t)
+        .collect();
+    let mut unique = bar.clone();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(unique.len(), bar.len(), "{bar:?}");
+}
+
+#[test]
+fn a_typing_error_in_the_report_stops_the_run() {
+    // 7.4206 typed as 74.206 in the first point of section X0.0.
+    let dir = scratch("typo");
+    let cmm = std::fs::read_to_string(examples().join("correct/cmm.csv")).unwrap();
+    let line = cmm.lines().nth(1).unwrap();
+    assert!(line.contains(",7.4206,"), "{line}");
+    let m = dir.join("cmm.csv");
+    std::fs::write(&m, cmm.replacen(",7.4206,", ",74.206,", 1)).unwrap();
+    let with_limit = |max_deviation_mm: f64| {
+        let settings = Settings {
+            options: Options {
+                tool: Tool::Ball { radius: 6.0 },
+                ..Options::default()
+            },
+            max_deviation_mm,
+            ..Settings::default()
+        };
+        job(m.clone(), examples().join("correct/mould.nc"), settings)
+    };
+    let out = Path::new("corrected.nc");
+    let e = refused(&with_limit(5.0), out);
+    assert!(
+        e.contains("section `X0.0`, point `1`: deviation 66.")
+            && e.contains("--max-deviation 5 mm"),
+        "{e}"
+    );
+    // The limit is the user's: 100 mm lets it through (and nodes move by
+    // tens of millimetres), 50 mm does not.
+    let done = correct(&with_limit(100.0), out, None).unwrap();
+    let r = json(&done.run.file("corrected.report.json").unwrap().bytes);
+    assert!(r["max_displacement_mm"].as_f64().unwrap() > 10.0, "{r}");
+    let e = refused(&with_limit(50.0), out);
+    assert!(e.contains("cmm.csv: section `X0.0`, point `1`"), "{e}");
+}
+
+#[test]
+fn a_displacement_beyond_the_limit_names_the_program_line() {
+    // Every point 3 mm high (within 5 mm), corrected with gain 2: the nodes
+    // would move by 6 mm.
+    let dir = scratch("limit");
+    let m = plate(&dir, &[0.0, 40.0, 80.0, 120.0], |_| 3.0);
+    let p = plate_program(&dir);
+    let mut settings = Settings::default();
+    settings.options.gain = 2.0;
+    let e = refused(&job(m.clone(), p.clone(), settings), Path::new("c.nc"));
+    assert!(
+        e.contains("plate.nc: line 6: the node would move by 6.000 mm"),
+        "{e}"
+    );
+    settings.max_deviation_mm = 7.0;
+    assert!(correct(&job(m, p, settings), Path::new("c.nc"), None).is_ok());
 }

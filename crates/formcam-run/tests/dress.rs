@@ -5,31 +5,18 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
-use formcam_run::{RunOutput, dress, dress_text};
+use common::{examples, scratch, summary, text};
+use formcam_run::{dress, dress_text};
 
 const EXAMPLE: &str = include_str!("../../../examples/dress-ballscrew-nut.toml");
 const DOCS: &str = include_str!("../../../docs/dressing.md");
 
 fn example_path() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/dress-ballscrew-nut.toml")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("formcam-run-dress-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn text(run: &RunOutput, name: &str) -> String {
-    let f = run.file(name).unwrap_or_else(|| panic!("no {name}"));
-    String::from_utf8(f.bytes.clone()).unwrap()
-}
-
-fn summary(run: &RunOutput) -> serde_json::Value {
-    serde_json::from_str(&text(run, "summary.json")).unwrap()
+    examples().join("dress-ballscrew-nut.toml")
 }
 
 /// A CSV's header and rows.

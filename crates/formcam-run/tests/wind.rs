@@ -1,0 +1,258 @@
+//! Winding runs through the library: the values of `path.csv`, `eye.csv`,
+//! `blocks.csv`, the programs and `summary.json` that `formcam wind` writes.
+
+#![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
+
+mod common;
+
+use std::path::Path;
+
+use common::{examples, machines, scratch, summary, text};
+use formcam_program::{EYE_CLEARANCE_MM, Stage};
+use formcam_run::{RunOutput, wind, wind_file};
+
+/// An example job run up to `stage`.
+fn example(name: &str, stage: Stage) -> RunOutput {
+    wind(&examples().join(name), Path::new("out"), stage).unwrap()
+}
+
+/// A job given as text (its machine paths made absolute) run as a program.
+fn winds(name: &str, job: &str) -> serde_json::Value {
+    let path = scratch(name).join("job.toml");
+    std::fs::write(&path, job).unwrap();
+    summary(&wind(&path, Path::new("out"), Stage::Program).unwrap())
+}
+
+/// FiberPath's tube, run as `formcam wind` runs a `.wind` document.
+fn fiberpath() -> RunOutput {
+    wind_file(
+        &examples().join("tube-fiberpath.wind"),
+        Path::new("out"),
+        EYE_CLEARANCE_MM,
+        &[],
+    )
+    .unwrap()
+}
+
+/// An example job's text with its machine paths made absolute.
+fn example_text(name: &str) -> String {
+    std::fs::read_to_string(examples().join(name))
+        .unwrap()
+        .replace("../machines/", &format!("{}/", machines().display()))
+}
+
+#[test]
+fn a_geodesic_path_turns_as_the_closed_form_says() {
+    let run = example("vessel-geodesic.toml", Stage::Path);
+    let csv = text(&run, "path.csv");
+    let mut lines = csv.lines();
+    let header = lines.next().unwrap();
+    assert!(header.starts_with("s,z,r,v,alpha,c,mu"));
+    assert_eq!(lines.count(), 2001);
+    let summary = summary(&run);
+    for key in [
+        "turn_angle_pass_rad",
+        "turn_angle_circuit_rad",
+        "mu",
+        "alpha_equator_rad",
+        "circuits",
+        "fibre_length_mm",
+    ] {
+        assert!(summary.get(key).is_some(), "summary.json lacks {key}");
+    }
+    let alpha = 0.3f64.asin();
+    let expect = 2.0 * std::f64::consts::PI + 2.0 * 300.0 * alpha.tan() / 100.0;
+    let got = summary["turn_angle_circuit_rad"].as_f64().unwrap();
+    assert!((got - expect).abs() < 1e-9, "{got} vs {expect}");
+    assert!((summary["alpha_equator_rad"].as_f64().unwrap() - alpha).abs() < 1e-9);
+    assert_eq!(summary["mu"].as_f64().unwrap(), 0.0);
+    let circuits = summary["circuits"].as_u64().unwrap() as f64;
+    assert_eq!(
+        circuits,
+        (std::f64::consts::TAU * 100.0 * alpha.cos() / 10.0).ceil()
+    );
+}
+
+#[test]
+fn the_eye_stage_gives_the_trajectory_and_its_summary() {
+    let run = example("vessel-eye-pull-speed.toml", Stage::Eye);
+    let csv = text(&run, "eye.csv");
+    let header = csv.lines().next().unwrap();
+    assert!(
+        header.starts_with("x,z,r,v,alpha,l,eye_z,eye_r,eye_v,lambda,u"),
+        "{header}"
+    );
+    assert_eq!(csv.lines().count(), 1 + 1001);
+    let summary = summary(&run);
+    assert_eq!(summary["eye_mode"], "pull-speed");
+    assert_eq!(summary["constraints_ok"], true);
+    assert!(summary["violations"].as_array().unwrap().is_empty());
+    let (lo, hi) = (
+        summary["u_min"].as_f64().unwrap(),
+        summary["u_max"].as_f64().unwrap(),
+    );
+    assert!(lo > 0.0 && lo <= 1.0 && hi >= 1.0, "{lo} {hi}");
+    assert!(summary["u_rms_dev"].as_f64().unwrap() >= 0.0);
+    // The path outputs come along.
+    assert!(run.file("path.csv").is_some() && run.file("eye.svg").is_some());
+}
+
+#[test]
+fn the_whole_program_is_timed_and_written() {
+    let run = example("vessel-program-840d.toml", Stage::Program);
+    let summary = summary(&run);
+    for key in [
+        "blocks",
+        "program_time_s",
+        "program_time_pairwise_s",
+        "program_time_global_s",
+        "layers",
+        "fibre_length_mm",
+    ] {
+        assert!(summary.get(key).is_some(), "summary.json lacks {key}");
+    }
+    let global = summary["program_time_global_s"].as_f64().unwrap();
+    let pairwise = summary["program_time_pairwise_s"].as_f64().unwrap();
+    assert!(global <= pairwise * (1.0 + 1e-9));
+    let blocks = summary["blocks"].as_u64().unwrap() as usize;
+    let program = text(&run, "program.mpf");
+    assert!(program.contains("G90 G94 G71") && program.trim_end().ends_with("M30"));
+    assert_eq!(
+        program.lines().filter(|l| l.contains(" G1 ")).count(),
+        blocks
+    );
+    let csv = text(&run, "blocks.csv");
+    assert!(csv.starts_with("block,t,A,X,Y,B,"));
+    assert_eq!(csv.lines().count(), blocks + 1);
+}
+
+#[test]
+fn a_multi_layer_job_grows_the_mandrel_and_writes_one_program() {
+    let run = example("tube-layers-4axis.toml", Stage::Program);
+    let summary = summary(&run);
+    assert_eq!(summary["layers"], 4);
+    let layers = summary["per_layer"].as_array().unwrap();
+    let kinds: Vec<&str> = layers.iter().map(|l| l["kind"].as_str().unwrap()).collect();
+    assert_eq!(kinds, ["hoop", "helical", "skip", "helical"]);
+    // Each winding layer is planned on the mandrel grown by the ones before it.
+    let t0 = layers[0]["thickness_mm"].as_f64().unwrap();
+    let g1 = layers[1]["mandrel_growth_mm"].as_f64().unwrap();
+    let t1 = layers[1]["thickness_mm"].as_f64().unwrap();
+    let g3 = layers[3]["mandrel_growth_mm"].as_f64().unwrap();
+    assert!((g1 - t0).abs() < 1e-12 && (g3 - (t0 + t1)).abs() < 1e-12);
+    // A hoop layer lays one band width per turn.
+    let hoop = layers[0]["alpha_equator_deg"].as_f64().unwrap();
+    let expect = (std::f64::consts::TAU * 75.0 / 6.0).atan().to_degrees();
+    assert!((hoop - expect).abs() < 1e-9, "{hoop} vs {expect}");
+    let sum: f64 = layers.iter().map(|l| l["time_s"].as_f64().unwrap()).sum();
+    let total = summary["program_time_s"].as_f64().unwrap();
+    assert!(total >= sum - 1e-6, "{total} vs {sum}");
+    let program = text(&run, "program.ngc");
+    for label in [
+        "layer 1 [hoop]",
+        "layer 2 [helical]",
+        "layer 3 [skip]",
+        "layer 4 [helical]",
+    ] {
+        assert!(program.contains(label), "{label}");
+    }
+    let csv = text(&run, "blocks.csv");
+    assert_eq!(
+        csv.lines().count() - 1,
+        summary["blocks"].as_u64().unwrap() as usize
+    );
+    // Path, eye and axes take one [winding].
+    let e = wind(
+        &examples().join("tube-layers-4axis.toml"),
+        Path::new("out"),
+        Stage::Axes,
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("[[layer]]"), "{e}");
+}
+
+#[test]
+fn a_wind_file_runs_on_the_xab_winder_and_writes_marlin() {
+    let run = fiberpath();
+    let summary = summary(&run);
+    assert_eq!(summary["layers"], 3);
+    assert_eq!(summary["machine"], "X/A/B winder");
+    let layers = summary["per_layer"].as_array().unwrap();
+    assert_eq!(
+        layers[1]["alpha_equator_deg"].as_f64().unwrap().round(),
+        45.0
+    );
+    let program = text(&run, "program.gcode");
+    assert!(program.contains("G21") && program.contains("G90") && program.contains("G94"));
+    assert!(
+        program
+            .lines()
+            .any(|l| l.starts_with("G1 ") && l.contains('A') && l.contains('X'))
+    );
+    assert!(!program.contains('Y') && !program.contains("G93"));
+}
+
+#[test]
+fn acceleration_limits_lengthen_the_program() {
+    let job = example_text("vessel-program-840d.toml")
+        .replace("# acceleration = true", "acceleration = true #");
+    let summary = winds("acceleration", &job);
+    let with = summary["program_time_s"].as_f64().unwrap();
+    let global = summary["program_time_global_s"].as_f64().unwrap();
+    assert!(with > global, "{with} vs {global}");
+}
+
+#[test]
+fn a_one_way_hoop_lays_one_ply() {
+    let both = example_text("tube-layers-4axis.toml");
+    let one = both.replacen("kind = \"hoop\"\n", "kind = \"hoop\"\none_way = true\n", 1);
+    let run = |name: &str, text: &str| winds(name, text)["per_layer"][0].clone();
+    let (b, o) = (run("hoop-both", &both), run("hoop-one", &one));
+    assert_eq!(o["one_way"], true);
+    let (tb, to) = (
+        b["thickness_mm"].as_f64().unwrap(),
+        o["thickness_mm"].as_f64().unwrap(),
+    );
+    assert!((to - 0.5 * tb).abs() < 1e-12, "{to} vs {tb}");
+    assert!(o["time_s"].as_f64().unwrap() < b["time_s"].as_f64().unwrap());
+}
+
+/// The largest |value| of the spindle's words (`A..`, `A=ACP(..)`, `A=ACN(..)`).
+fn largest_spindle_angle(program: &str) -> f64 {
+    program
+        .lines()
+        .filter(|l| !l.starts_with(';') && !l.starts_with('('))
+        .flat_map(|l| l.split(' '))
+        .filter_map(|w| {
+            w.strip_prefix("A=ACP(")
+                .or_else(|| w.strip_prefix("A=ACN("))
+                .map(|v| v.trim_end_matches(')'))
+                .or_else(|| w.strip_prefix('A'))
+        })
+        .map(|v| v.parse::<f64>().unwrap().abs())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn the_spindle_stays_within_100_turns() {
+    // FiberPath's tube wound the spindle to A-291582.1534 on Marlin: now
+    // re-zeroed by G92 between layers and before it would pass 100 turns.
+    let run = fiberpath();
+    let program = text(&run, "program.gcode");
+    let largest = largest_spindle_angle(&program);
+    assert!(largest <= 36000.0, "largest |A| {largest}");
+    assert!(program.lines().filter(|l| l.starts_with("G92 A")).count() >= 3);
+    // The spindle's unwound angle still runs far beyond: blocks.csv keeps it.
+    let csv = text(&run, "blocks.csv");
+    let unwound = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(2).unwrap().parse::<f64>().unwrap().abs())
+        .fold(0.0, f64::max);
+    assert!(unwound > 100_000.0, "{unwound}");
+    // Sinumerik 840D: a modulo axis, every angle within the turn.
+    let run = example("vessel-layers-840d.toml", Stage::Program);
+    let program = text(&run, "program.mpf");
+    assert!(program.contains("A=ACP(") && program.contains("A=ACN("));
+    assert!(largest_spindle_angle(&program) < 360.0);
+}

@@ -256,3 +256,99 @@ fn the_spindle_stays_within_100_turns() {
     assert!(program.contains("A=ACP(") && program.contains("A=ACN("));
     assert!(largest_spindle_angle(&program) < 360.0);
 }
+
+/// A CSV's header and rows of numbers.
+fn csv(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
+    let mut lines = text.lines();
+    let header = lines.next().unwrap().split(',').map(String::from).collect();
+    let rows = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    (header, rows)
+}
+
+/// `axis_ranges` spans every block of every layer: each block end of
+/// `blocks.csv` lies within it.
+fn ranges_cover_every_block(name: &str, run: &RunOutput) {
+    let s = summary(run);
+    let (header, rows) = csv(&text(run, "blocks.csv"));
+    for r in s["axis_ranges"].as_array().unwrap() {
+        let axis = r["axis"].as_str().unwrap();
+        let col = header.iter().position(|h| h == axis).unwrap();
+        let (lo, hi) = (r["min"].as_f64().unwrap(), r["max"].as_f64().unwrap());
+        let (blo, bhi) = rows
+            .iter()
+            .map(|row| row[col])
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                (a.min(v), b.max(v))
+            });
+        assert!(
+            lo <= blo + 1e-9 && hi >= bhi - 1e-9,
+            "{name}: {axis} [{lo}, {hi}] vs blocks [{blo}, {bhi}]"
+        );
+    }
+}
+
+#[test]
+fn the_summary_and_the_files_describe_the_whole_program() {
+    // One layer: the spindle's range covers every circuit, not one.
+    let run = example("vessel-program-840d.toml", Stage::Program);
+    ranges_cover_every_block("one-layer", &run);
+    let s = summary(&run);
+    let (header, circuit) = csv(&text(&run, "axes.csv"));
+    let a = header.iter().position(|h| h == "A").unwrap();
+    let circuit_span = circuit
+        .iter()
+        .map(|r| r[a])
+        .fold(f64::NEG_INFINITY, f64::max)
+        - circuit.iter().map(|r| r[a]).fold(f64::INFINITY, f64::min);
+    let range = s["axis_ranges"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["axis"] == "A")
+        .unwrap()
+        .clone();
+    let span = range["max"].as_f64().unwrap() - range["min"].as_f64().unwrap();
+    assert!(
+        s["circuits"].as_u64().unwrap() > 1 && span > 1.5 * circuit_span,
+        "A spans {span} deg over the program, {circuit_span} deg over a circuit"
+    );
+
+    // Several layers: each layer's own outputs, and the axes over the program.
+    let run = example("tube-layers-4axis.toml", Stage::Program);
+    ranges_cover_every_block("layers", &run);
+    let s = summary(&run);
+    let mut wound = 0;
+    for l in s["per_layer"].as_array().unwrap() {
+        let dir = format!("layer-{:02}", l["layer"].as_u64().unwrap());
+        if l["kind"] == "skip" {
+            assert!(!run.files.iter().any(|f| f.name.starts_with(&dir)));
+            continue;
+        }
+        wound += 1;
+        for f in [
+            "path.csv", "path.svg", "eye.csv", "eye.svg", "axes.csv", "band.csv",
+        ] {
+            assert!(run.file(&format!("{dir}/{f}")).is_some(), "{dir}/{f}");
+        }
+        let (h, rows) = csv(&text(&run, &format!("{dir}/axes.csv")));
+        assert_eq!(h[0], "x");
+        assert!(rows.len() > 100);
+    }
+    assert!(wound >= 2);
+    let (h, rows) = csv(&text(&run, "axes.csv"));
+    assert_eq!(h[0], "t");
+    let (_, blocks) = csv(&text(&run, "blocks.csv"));
+    // The start, every block, and a move between layers that do not join.
+    assert!(
+        rows.len() > blocks.len(),
+        "{} vs {}",
+        rows.len(),
+        blocks.len()
+    );
+    let total = rows.last().unwrap()[0];
+    let time = s["program_time_s"].as_f64().unwrap();
+    assert!((total - time).abs() < 1e-6 * time, "{total} vs {time}");
+    assert!(rows.windows(2).all(|w| w[1][0] >= w[0][0]));
+}

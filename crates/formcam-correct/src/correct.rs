@@ -163,6 +163,17 @@ impl<'g> Corrector<'g> {
         })
     }
 
+    /// [`Self::new`] on the patches evaluated by the formulas as written,
+    /// for the tests that check the precomputed ones against them.
+    #[cfg(test)]
+    fn reference(grid: &'g Grid, options: Options) -> Result<Self, CorrectError> {
+        let fast = Self::new(grid, options)?;
+        Ok(Self {
+            surface: Surface::reference(grid, options.interpolation),
+            ..fast
+        })
+    }
+
     /// The surface.
     pub fn surface(&self) -> &Surface<'g> {
         &self.surface
@@ -297,15 +308,13 @@ impl<'g> Corrector<'g> {
         }
         let g = self.surface.grid();
         let start = match *hint {
-            Some((hi, hj, q, reach)) if norm(sub(p, q)) < reach => Some((hi, hj)),
+            Some((hi, hj, q, reach2)) if dot(sub(p, q), sub(p, q)) < reach2 => Some((hi, hj)),
             _ => None,
         };
         let (i, j, foot) = self.walk(p, start);
         // A node near the previous one starts from its facet; "near" is
         // half the facet's shorter edge, so the walk is a step or two.
-        let reach =
-            0.5 * norm(sub(g.at(i + 1, j), g.at(i, j))).min(norm(sub(g.at(i, j + 1), g.at(i, j))));
-        *hint = Some((i, j, p, reach));
+        *hint = Some((i, j, p, 0.25 * self.surface.shorter_edge2(i, j)));
         let (s, t) = (foot.s, foot.t);
         let at_edge = (s <= 0.0 && i == 0)
             || (s >= 1.0 && i + 2 == g.nu)
@@ -360,23 +369,18 @@ impl<'g> Corrector<'g> {
         }
     }
 
-    /// The corrections of all `nodes`, computed on rayon's global pool: one
-    /// run of consecutive nodes per thread (at least 4096 nodes each), each
-    /// run walking from one node's facet to the next.
+    /// The corrections of all `nodes`, computed on rayon's global pool in
+    /// runs of consecutive nodes (at least 4096 each, split further only
+    /// when a thread is idle), each run walking from one node's facet to the
+    /// next and writing straight into the result.
     pub fn correct(&self, nodes: &[V3]) -> Vec<NodeCorrection> {
-        let runs = rayon::current_num_threads()
-            .min(nodes.len().div_ceil(4096))
-            .max(1);
-        let run = nodes.len().div_ceil(runs).max(1);
+        let mut out = Vec::with_capacity(nodes.len());
         nodes
-            .par_chunks(run)
-            .map(|part| {
-                part.iter()
-                    .scan(None, |hint, &p| Some(self.correct_near(p, hint)))
-                    .collect::<Vec<_>>()
-            })
-            .collect::<Vec<_>>()
-            .concat()
+            .par_iter()
+            .with_min_len(4096)
+            .map_init(|| None, |hint, &p| self.correct_near(p, hint))
+            .collect_into_vec(&mut out);
+        out
     }
 }
 
@@ -470,5 +474,93 @@ impl Totals {
             t.rms_displacement_mm = (sum / t.corrected as f64).sqrt();
         }
         t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    /// A gently curved `nu x nv` grid (a random quadratic, every point
+    /// jittered) with random deviations, and nodes above and below it,
+    /// some beyond its edges.
+    fn case() -> impl Strategy<Value = (Grid, Vec<V3>)> {
+        (
+            2usize..9,
+            2usize..9,
+            2.0..15.0f64,
+            2.0..15.0f64,
+            prop::array::uniform3(-0.02..0.02f64),
+        )
+            .prop_flat_map(|(nu, nv, dx, dy, q)| {
+                let n = nu * nv;
+                let (w, h) = ((nu - 1) as f64 * dx, (nv - 1) as f64 * dy);
+                (
+                    prop::collection::vec(prop::array::uniform3(-0.15..0.15f64), n),
+                    prop::collection::vec(prop::array::uniform3(-0.3..0.3f64), n),
+                    prop::collection::vec((-0.2..1.2f64, -0.2..1.2f64, -3.0..3.0f64), 1..60),
+                )
+                    .prop_map(move |(jitter, deviation, raw)| {
+                        let z = |x: f64, y: f64| q[0] * x * x + q[1] * x * y + q[2] * y * y;
+                        let nominal = (0..n)
+                            .map(|k| {
+                                let (i, j) = ((k % nu) as f64, (k / nu) as f64);
+                                let [a, b, c] = jitter[k];
+                                let (x, y) = ((i + a) * dx, (j + b) * dy);
+                                [x, y, z(x, y) + c]
+                            })
+                            .collect();
+                        let nodes = raw
+                            .iter()
+                            .map(|&(u, v, above)| {
+                                let (x, y) = (u * w, v * h);
+                                [x, y, z(x, y) + above]
+                            })
+                            .collect();
+                        let grid = Grid {
+                            nu,
+                            nv,
+                            nominal,
+                            deviation,
+                            normal: None,
+                            resampled: false,
+                            reordered: false,
+                        };
+                        (grid, nodes)
+                    })
+            })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        /// The fast path (precomputed patches, runs of nodes walking from
+        /// one node's facet to the next, written straight into the result)
+        /// gives every node the displacement and placement of the formulas
+        /// as written, node by node from the k-d tree, to 1e-12 mm.
+        #[test]
+        fn the_fast_path_equals_the_straightforward_formula(
+            (grid, nodes) in case(),
+            ball in prop::option::of(0.5..4.0f64),
+            margin_mm in 0.0..3.0f64,
+        ) {
+            let tool = ball.map_or(Tool::Point, |radius| Tool::Ball { radius });
+            for interpolation in [Interpolation::Bilinear, Interpolation::Bicubic] {
+                let options = Options { gain: 1.0, tool, interpolation, margin_mm };
+                let fast = Corrector::new(&grid, options).map_err(|e| TestCaseError::fail(e.to_string()))?;
+                let slow = Corrector::reference(&grid, options).map_err(|e| TestCaseError::fail(e.to_string()))?;
+                for (k, (a, p)) in fast.correct(&nodes).iter().zip(&nodes).enumerate() {
+                    let b = slow.correct_node(*p);
+                    prop_assert_eq!(a.placement, b.placement, "{:?} node {}", interpolation, k);
+                    prop_assert!(
+                        norm(sub(a.displacement, b.displacement)) <= 1e-12,
+                        "{:?} node {} at {:?}: {:?} vs {:?}", interpolation, k, p, a, b
+                    );
+                    prop_assert!((a.distance_mm - b.distance_mm).abs() <= 1e-9);
+                }
+            }
+        }
     }
 }

@@ -520,20 +520,28 @@ impl<'g> Surface<'g> {
     /// bilinear form is continued beyond its edges (for extrapolation).
     pub(crate) fn foot(&self, i: usize, j: usize, p: V3, clamp: bool) -> Foot {
         let (lo, hi) = if clamp { (0.0, 1.0) } else { (-50.0, 51.0) };
-        let linear = newton(|s, t| self.bilinear(i, j, s, t), p, lo, hi, (0.5, 0.5));
+        let linear = newton::<false>(|s, t| self.bilinear(i, j, s, t), p, lo, hi, (0.5, 0.5));
         if !clamp || self.kind == Interpolation::Bilinear {
             return linear;
         }
         // Bicubic: from the bilinear foot, which is close.
-        newton(|s, t| self.jet(i, j, s, t), p, lo, hi, (linear.s, linear.t))
+        newton::<true>(|s, t| self.jet(i, j, s, t), p, lo, hi, (linear.s, linear.t))
     }
 }
 
 /// Minimises `|F(s, t) - p|^2` over `[lo, hi]^2` from `start`: projected
 /// Newton, Gauss–Newton where the Hessian is not positive definite, a
-/// halving line search keeping every step a descent.
+/// halving line search keeping every step a descent. Without `CURVED` the
+/// patch is bilinear (`fss = ftt = 0`) and `r . fss`, `r . ftt` are left
+/// out: adding those zeros changes no bit.
 #[inline(always)]
-fn newton(eval: impl Fn(f64, f64) -> Jet, p: V3, lo: f64, hi: f64, start: (f64, f64)) -> Foot {
+fn newton<const CURVED: bool>(
+    eval: impl Fn(f64, f64) -> Jet,
+    p: V3,
+    lo: f64,
+    hi: f64,
+    start: (f64, f64),
+) -> Foot {
     let (mut s, mut t) = start;
     let mut jet = eval(s, t);
     let mut r = sub(jet.f, p);
@@ -544,11 +552,15 @@ fn newton(eval: impl Fn(f64, f64) -> Jet, p: V3, lo: f64, hi: f64, start: (f64, 
         let a = dot(jet.fs, jet.fs);
         let b = dot(jet.fs, jet.ft);
         let c = dot(jet.ft, jet.ft);
-        let (mut hss, mut hst, mut htt) = (
-            a + dot(r, jet.fss),
-            b + dot(r, jet.fst),
-            c + dot(r, jet.ftt),
-        );
+        let (mut hss, mut hst, mut htt) = if CURVED {
+            (
+                a + dot(r, jet.fss),
+                b + dot(r, jet.fst),
+                c + dot(r, jet.ftt),
+            )
+        } else {
+            (a, b + dot(r, jet.fst), c)
+        };
         if hss <= 0.0 || htt <= 0.0 || hss * htt - hst * hst <= 1e-14 * (a * c).max(1e-300) {
             (hss, hst, htt) = (a, b, c);
         }

@@ -5,13 +5,15 @@ use std::sync::Mutex;
 use crate::{Cancelled, Phase, Progress, Step};
 
 /// Counts the finished items of one phase whose items run in parallel (a
-/// program's layers): each [`Tally::add`] reports the new count, in
-/// order, under a lock (held only for the report).
+/// program's layers): the first [`Tally::start`] reports 0, each
+/// [`Tally::add`] the new count, in order, under a lock (held only for the
+/// report).
 pub struct Tally<'a> {
     progress: &'a dyn Progress,
     phase: Phase,
     total: u64,
-    done: Mutex<u64>,
+    /// Items done; `None` before the phase started.
+    done: Mutex<Option<u64>>,
 }
 
 impl<'a> Tally<'a> {
@@ -21,25 +23,47 @@ impl<'a> Tally<'a> {
             progress,
             phase,
             total,
-            done: Mutex::new(0),
+            done: Mutex::new(None),
         }
     }
 
-    /// Reports the phase's start (0 done).
+    /// Reports the phase's start (0 done) the first time a worker starts
+    /// it; then only asks whether to stop.
     pub fn start(&self) -> Result<(), Cancelled> {
-        self.add(0)
+        let mut done = self.lock();
+        if done.is_some() {
+            return if self.progress.cancelled() {
+                Err(Cancelled)
+            } else {
+                Ok(())
+            };
+        }
+        *done = Some(0);
+        self.progress
+            .checkpoint(Step::new(self.phase, 0, self.total))
     }
 
     /// `n` more items finished: reported, then [`Cancelled`] when the run is
-    /// to stop.
+    /// to stop. A phase not started reports its start first.
     pub fn add(&self, n: u64) -> Result<(), Cancelled> {
-        let mut done = self
-            .done
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner);
-        *done += n;
+        let mut done = self.lock();
+        let before = match *done {
+            Some(d) => d,
+            None => {
+                self.progress
+                    .checkpoint(Step::new(self.phase, 0, self.total))?;
+                0
+            }
+        };
+        *done = Some(before + n);
         self.progress
-            .checkpoint(Step::new(self.phase, *done, self.total))
+            .checkpoint(Step::new(self.phase, before + n, self.total))
+    }
+
+    fn lock(&self) -> std::sync::MutexGuard<'_, Option<u64>> {
+        self.done
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
     }
 }
 
@@ -62,10 +86,9 @@ mod tests {
         let seen = Mutex::new(Vec::new());
         let hook = Hook::new(|s: Step| seen.lock().map(|mut v| v.push(s.done)).unwrap_or(()));
         let tally = Tally::new(&hook, Phase::Eye, 8);
-        assert_eq!(tally.start(), Ok(()));
         std::thread::scope(|sc| {
             for _ in 0..8 {
-                sc.spawn(|| tally.add(1));
+                sc.spawn(|| tally.start().and_then(|()| tally.add(1)));
             }
         });
         let seen = seen.into_inner().unwrap_or_default();

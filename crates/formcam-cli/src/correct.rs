@@ -15,6 +15,7 @@ use formcam_run::{History, RunOutput};
 
 use crate::CliError;
 use crate::output::{write_all, write_run};
+use crate::progress::with_bar;
 
 /// Options of `formcam correct`.
 #[derive(Debug, clap::Args)]
@@ -115,7 +116,7 @@ pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
         .clone()
         .ok_or_else(|| CliError::CorrectJobNeedsOutput { job: job.clone() })?;
     let text = read_text(job)?;
-    let done = formcam_run::correct_job(job, &text, &out)?;
+    let done = with_bar(|p| formcam_run::correct_job_with(job, &text, &out, p))?;
     guard_job(job, &text, &out, &done)?;
     write_run(&out, &done)?;
     Ok(done.line)
@@ -164,7 +165,7 @@ fn run_args(a: &CorrectArgs) -> Result<String, CliError> {
         }),
         None => None,
     };
-    let done = formcam_run::correct(&job, &out_path, history.as_ref())?;
+    let done = with_bar(|p| formcam_run::correct_with(&job, &out_path, history.as_ref(), p))?;
     write_run(&formcam_run::output_folder(&out_path), &done.run)?;
     if let (Some(rp), Some(report)) = (&a.report, done.report) {
         let name = rp
@@ -242,7 +243,7 @@ pub(crate) fn guard_job(
 /// Runs `formcam correct simulate`; returns the one-line summary.
 pub fn simulate(path: &Path, out: &Path) -> Result<String, CliError> {
     let text = read_text(path)?;
-    let done = formcam_run::correct_simulate(path, &text, out)?;
+    let done = with_bar(|p| formcam_run::correct_simulate_with(path, &text, out, p))?;
     write_run(out, &done)?;
     Ok(done.line)
 }

@@ -6,10 +6,12 @@ use std::path::Path;
 
 use crate::CliError;
 use crate::output::emit;
+use crate::progress::with_bar;
 
 /// Runs the dressing job `job`, writing its outputs into `out`; returns the
 /// line to print.
 pub fn run(job: &Path, out: &Path) -> Result<String, CliError> {
-    let run = formcam_run::dressing_for(job, out, formcam_run::dress(job)?);
+    let done = with_bar(|p| formcam_run::dress_with(job, p))?;
+    let run = formcam_run::dressing_for(job, out, done);
     emit(out, run)
 }

@@ -6,6 +6,7 @@ mod dress;
 mod error;
 mod machine;
 mod output;
+mod progress;
 mod wind;
 
 use std::path::PathBuf;

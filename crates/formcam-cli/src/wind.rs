@@ -8,6 +8,7 @@ use formcam_program::{Check, Stage};
 
 use crate::CliError;
 use crate::output::emit;
+use crate::progress::with_bar;
 
 /// A check whose failure a `.wind` job accepts (`--allow`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -51,7 +52,8 @@ impl From<AllowCheck> for Check {
 
 /// `formcam wind [path|eye|axes] JOB -o OUT`; returns the one-line summary.
 pub fn run(job: &Path, out: &Path, stage: Stage) -> Result<String, CliError> {
-    emit(out, formcam_run::wind(job, out, stage)?)
+    let run = with_bar(|p| formcam_run::wind_with(job, out, stage, p))?;
+    emit(out, run)
 }
 
 /// `formcam wind JOB.wind -o OUT [--eye-clearance MM] [--allow CHECKS]`.
@@ -62,10 +64,8 @@ pub fn run_wind_file(
     allow: &[AllowCheck],
 ) -> Result<String, CliError> {
     let allow: Vec<Check> = allow.iter().map(|&c| c.into()).collect();
-    emit(
-        out,
-        formcam_run::wind_file(job, out, eye_clearance, &allow)?,
-    )
+    let run = with_bar(|p| formcam_run::wind_file_with(job, out, eye_clearance, &allow, p))?;
+    emit(out, run)
 }
 
 /// Runs every `*.toml` and `*.wind` job in `examples` into `out/<name>/`,
@@ -76,7 +76,7 @@ pub fn run_demo(examples: &Path, out: &Path) -> Result<(), CliError> {
         let dir = formcam_run::demo_folder(out, job);
         let text = crate::correct::read_text(job)?;
         let kind = formcam_run::JobKind::of(job, &text);
-        let run = formcam_run::run_job_text(job, &text, kind, &dir)?;
+        let run = with_bar(|p| formcam_run::run_job_text_with(job, &text, kind, &dir, p))?;
         if kind == formcam_run::JobKind::Correction {
             crate::correct::guard_job(job, &text, &dir, &run)?;
         }

@@ -1,6 +1,8 @@
 //! A correction applied to a whole program: its movable nodes corrected,
 //! the displacement limit checked, the program written back.
 
+use formcam_progress::{Cancelled, Phase, Progress, Silent, Step};
+
 use crate::vec3::{V3, add, norm};
 use crate::{CorrectError, Corrector, MillingProgram, NodeCorrection, Placement, Totals};
 
@@ -22,6 +24,10 @@ pub struct Applied {
     pub totals: Totals,
 }
 
+/// Nodes corrected between two progress reports: enough to keep every
+/// worker of the pool busy (runs of at least 4096 nodes each).
+const CHUNK: usize = 1 << 16;
+
 impl Corrector<'_> {
     /// Corrects every movable node of `program` and writes it back. With
     /// `limit_mm`, a node that would move farther is an error naming its
@@ -30,6 +36,17 @@ impl Corrector<'_> {
         &self,
         program: &MillingProgram,
         limit_mm: Option<f64>,
+    ) -> Result<Applied, CorrectError> {
+        self.apply_with(program, limit_mm, &Silent)
+    }
+
+    /// [`Self::apply`] reporting the nodes corrected to `progress` (every
+    /// 65 536 nodes); [`CorrectError::Cancelled`] when it asks to stop.
+    pub fn apply_with(
+        &self,
+        program: &MillingProgram,
+        limit_mm: Option<f64>,
+        progress: &dyn Progress,
     ) -> Result<Applied, CorrectError> {
         let positions = program.positions();
         let movable = program.movable();
@@ -43,7 +60,7 @@ impl Corrector<'_> {
             .filter(|(_, m)| **m)
             .map(|(p, _)| *p)
             .collect();
-        let corrections = self.correct(&nodes);
+        let corrections = self.correct_in_chunks(&nodes, progress)?;
         if let Some(limit_mm) = limit_mm {
             check_limit(&corrections, &lines, limit_mm)?;
         }
@@ -69,6 +86,24 @@ impl Corrector<'_> {
             corrections,
             outside_lines,
         })
+    }
+}
+
+impl Corrector<'_> {
+    /// [`Corrector::correct`] chunk by chunk, each chunk reported.
+    fn correct_in_chunks(
+        &self,
+        nodes: &[V3],
+        progress: &dyn Progress,
+    ) -> Result<Vec<NodeCorrection>, Cancelled> {
+        let total = nodes.len() as u64;
+        progress.checkpoint(Step::new(Phase::Nodes, 0, total))?;
+        let mut out = Vec::with_capacity(nodes.len());
+        for chunk in nodes.chunks(CHUNK) {
+            out.extend(self.correct(chunk));
+            progress.checkpoint(Step::new(Phase::Nodes, out.len() as u64, total))?;
+        }
+        Ok(out)
     }
 }
 

@@ -75,6 +75,9 @@ pub enum CorrectError {
         /// The limit, mm.
         limit_mm: f64,
     },
+    /// The run was cancelled by its progress hook.
+    #[error(transparent)]
+    Cancelled(#[from] formcam_progress::Cancelled),
 }
 
 impl From<formcam_nc::NcError> for CorrectError {

@@ -52,7 +52,7 @@ pub use job::{
 pub use measure::{MeasuredPoint, Measurements, Section};
 pub use nodes::NodeTable;
 pub use patch::{Interpolation, Surface};
-pub use pipeline::{Correction, correct_program};
+pub use pipeline::{Correction, correct_program, correct_program_with};
 pub use program::MillingProgram;
 pub use report::Report;
 pub use scenario::ScenarioJob;

@@ -1,6 +1,8 @@
 //! The correction of a program from a CMM report: the deviations checked,
 //! the grid built and smoothed, the nodes corrected, the report drawn up.
 
+use formcam_progress::{Phase, Progress, Silent, Step};
+
 use crate::{
     Applied, CorrectError, Corrector, Grid, Measurements, MillingProgram, Report, Settings, smooth,
 };
@@ -26,12 +28,28 @@ pub fn correct_program(
     program: &MillingProgram,
     settings: &Settings,
 ) -> Result<Correction, CorrectError> {
+    correct_program_with(measurements, program, settings, &Silent)
+}
+
+/// [`correct_program`] reporting to `progress` (the grid, then the nodes
+/// chunk by chunk); [`CorrectError::Cancelled`] when it asks to stop.
+pub fn correct_program_with(
+    measurements: &Measurements,
+    program: &MillingProgram,
+    settings: &Settings,
+    progress: &dyn Progress,
+) -> Result<Correction, CorrectError> {
     settings.check()?;
     measurements.check_deviation(settings.max_deviation_mm)?;
+    progress.checkpoint(Step::new(Phase::Grid, 0, 1))?;
     let mut grid = Grid::from_measurements(measurements, settings.points_per_section)?;
     let smoothing = smooth(&mut grid, settings.noise_mm);
-    let applied =
-        Corrector::new(&grid, settings.options)?.apply(program, Some(settings.max_deviation_mm))?;
+    progress.checkpoint(Step::new(Phase::Grid, 1, 1))?;
+    let applied = Corrector::new(&grid, settings.options)?.apply_with(
+        program,
+        Some(settings.max_deviation_mm),
+        progress,
+    )?;
     let smoothing = (settings.noise_mm > 0.0).then_some(smoothing);
     let report = Report::new(measurements, &grid, smoothing, program, &applied, settings);
     Ok(Correction {

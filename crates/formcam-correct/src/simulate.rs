@@ -13,6 +13,7 @@
 //! dense check grid.
 
 use formcam_nc::{Dialect, ToolpathOptions};
+use formcam_progress::{Muted, Phase, Progress, Silent, Step};
 
 use crate::vec3::{V3, axpy, cross, dot, norm, scale, sub, unit};
 use crate::{
@@ -380,29 +381,40 @@ impl Scenario {
         (program, _): &(MillingProgram, Vec<V3>),
         m: &Measurements,
         options: Options,
+        progress: &dyn Progress,
     ) -> Result<String, CorrectError> {
         let mut grid = Grid::from_measurements(m, None)?;
         if self.smoothing {
             smooth(&mut grid, self.noise);
         }
-        Ok(Corrector::new(&grid, options)?.apply(program, None)?.text)
+        Ok(Corrector::new(&grid, options)?
+            .apply_with(program, None, &Muted(progress))?
+            .text)
     }
 
     /// Runs the loop: measure the part of the nominal program, then
     /// `iterations` times correct, re-mill, mould and measure again.
     pub fn run(&self) -> Result<LoopResult, CorrectError> {
+        self.run_with(&Silent)
+    }
+
+    /// [`Self::run`] reporting each round to `progress` (which may stop
+    /// the loop within a round too: [`CorrectError::Cancelled`]).
+    pub fn run_with(&self, progress: &dyn Progress) -> Result<LoopResult, CorrectError> {
         self.validate()?;
+        let total = self.iterations as u64 + 1;
         let mut rng = Rng::new(self.seed);
         let mut program = self.program();
         let mut rounds = Vec::new();
         let check = 61;
         for k in 0..=self.iterations {
+            progress.checkpoint(Step::new(Phase::Round, k as u64, total))?;
             let read = feed_nodes(&program)?;
             let part = self.part(&read.1)?;
             let m = self.measure(&part, self.sections, self.points, &mut rng);
             let (true_max, true_rms) = self.true_error(&part, check);
             let next = if k < self.iterations {
-                Some(self.correct(&read, &m, self.options)?)
+                Some(self.correct(&read, &m, self.options, progress)?)
             } else {
                 None
             };
@@ -419,6 +431,7 @@ impl Scenario {
                 None => break,
             }
         }
+        progress.checkpoint(Step::new(Phase::Round, total, total))?;
         Ok(LoopResult { rounds })
     }
 
@@ -426,7 +439,19 @@ impl Scenario {
     /// `section_counts` (points per section scaled alike) and each
     /// interpolation: how the residual depends on the section spacing.
     pub fn spacing_study(&self, section_counts: &[usize]) -> Result<Vec<SpacingRow>, CorrectError> {
+        self.spacing_study_with(section_counts, &Silent)
+    }
+
+    /// [`Self::spacing_study`] reporting each correction to `progress`
+    /// ([`CorrectError::Cancelled`] when it asks to stop).
+    pub fn spacing_study_with(
+        &self,
+        section_counts: &[usize],
+        progress: &dyn Progress,
+    ) -> Result<Vec<SpacingRow>, CorrectError> {
         self.validate()?;
+        let total = 2 * section_counts.len() as u64;
+        progress.checkpoint(Step::new(Phase::Study, 0, total))?;
         let nominal = self.program();
         let read = feed_nodes(&nominal)?;
         let part0 = self.part(&read.1)?;
@@ -449,7 +474,7 @@ impl Scenario {
                     interpolation,
                     ..self.options
                 };
-                let corrected = self.correct(&read, &m, opts)?;
+                let corrected = self.correct(&read, &m, opts, progress)?;
                 let part = self.part(&feed_nodes(&corrected)?.1)?;
                 let (max, rms) = self.true_error(&part, 61);
                 rows.push(SpacingRow {
@@ -460,6 +485,7 @@ impl Scenario {
                     true_max_mm: max,
                     true_rms_mm: rms,
                 });
+                progress.checkpoint(Step::new(Phase::Study, rows.len() as u64, total))?;
             }
         }
         Ok(rows)

@@ -1,13 +1,14 @@
 //! The whole dressing: profile, dresser, path, forming, feed and program.
 
 use formcam_nc::{Dialect, Program};
+use formcam_progress::{Progress, Silent};
 
 use crate::error::{finite, mm, num};
 use crate::forming::offset_contour;
 use crate::program::dressing_program;
 use crate::{
     Contour, DressError, Dresser, DresserSpec, FeedPlan, FeedSpec, Forming, Pass, Point, Profile,
-    WheelSpec, dresser_path, plan_feed, simulate,
+    WheelSpec, dresser_path, plan_feed, simulate_with,
 };
 
 /// The wheel's contour before dressing.
@@ -140,6 +141,12 @@ pub const STEP_MIN: f64 = 1e-4;
 /// (two passes), simulates forming from the allowance, plans the feed and
 /// writes the program. Errors are one line naming the field.
 pub fn dress(spec: &DressSpec) -> Result<Dressing, DressError> {
+    dress_with(spec, &Silent)
+}
+
+/// [`dress`] reporting the simulation of forming to `progress`;
+/// [`DressError::Cancelled`] when it asks to stop.
+pub fn dress_with(spec: &DressSpec, progress: &dyn Progress) -> Result<Dressing, DressError> {
     let profile = Profile::new(&spec.wheel)?;
     let tilt = profile.spec().flank_tilt;
     if tilt < 0.0 {
@@ -245,7 +252,7 @@ pub fn dress(spec: &DressSpec) -> Result<Dressing, DressError> {
         Allowance::Contour(points) => user_contour(&profile, points.clone(), h)?,
     };
     let passes = dresser_path(&profile, &dresser, h).to_vec();
-    let forming = simulate(&dresser, &passes, &initial, chord);
+    let forming = simulate_with(&dresser, &passes, &initial, chord, progress)?;
     check_gouge(&profile, &dresser, &forming)?;
     let feed = plan_feed(&forming.steps, &feed_spec);
     let (program, step_block) =

@@ -49,6 +49,9 @@ pub enum DressError {
     /// The NC program could not be written.
     #[error("program: {0}")]
     Nc(#[from] NcError),
+    /// The run was cancelled by its progress hook.
+    #[error(transparent)]
+    Cancelled(#[from] formcam_progress::Cancelled),
 }
 
 impl DressError {

@@ -14,7 +14,10 @@
 //! the wheel (the cut arc) and the angle of A and B about the
 //! dressing corner's centre (the cut-arc angle `epsilon`, eq. 12).
 
+use std::convert::Infallible;
 use std::f64::consts::PI;
+
+use formcam_progress::{Cancelled, Phase, Progress, Step as Report};
 
 use crate::contour::{ABOVE, Working, cut};
 use crate::curve::{Piece, arc_polyline};
@@ -172,8 +175,46 @@ pub fn offset_contour(profile: &Profile, depth: f64, chord: f64) -> Contour {
     c.clipped(-half, half).unwrap_or(c)
 }
 
+/// Steps between two progress reports of the simulation.
+const CHUNK: u64 = 4096;
+
 /// Steps the dresser along `passes` from the contour `initial`.
 pub fn simulate(dresser: &Dresser, passes: &[Pass], initial: &Contour, chord: f64) -> Forming {
+    let Ok(forming) = step_through(dresser, passes, initial, chord, |_, _| {
+        Ok::<(), Infallible>(())
+    });
+    forming
+}
+
+/// [`simulate`] reporting the steps done to `progress` (every 4096 steps);
+/// [`Cancelled`] when it asks to stop.
+pub fn simulate_with(
+    dresser: &Dresser,
+    passes: &[Pass],
+    initial: &Contour,
+    chord: f64,
+    progress: &dyn Progress,
+) -> Result<Forming, Cancelled> {
+    step_through(dresser, passes, initial, chord, |done, total| {
+        progress.checkpoint(Report::new(Phase::Forming, done, total))
+    })
+}
+
+/// The simulation, `tick(done, total)` called at its start, every
+/// [`CHUNK`] steps and at its end.
+fn step_through<E>(
+    dresser: &Dresser,
+    passes: &[Pass],
+    initial: &Contour,
+    chord: f64,
+    mut tick: impl FnMut(u64, u64) -> Result<(), E>,
+) -> Result<Forming, E> {
+    let total: u64 = passes
+        .iter()
+        .map(|p| p.points.len().saturating_sub(1) as u64)
+        .sum();
+    let mut done = 0;
+    tick(done, total)?;
     let mut work = Working::new(initial);
     let mut steps = Vec::new();
     let mut after_pass = Vec::new();
@@ -244,16 +285,21 @@ pub fn simulate(dresser: &Dresser, passes: &[Pass], initial: &Contour, chord: f6
                 }
             }
             steps.push(step);
+            done += 1;
+            if done % CHUNK == 0 {
+                tick(done, total)?;
+            }
         }
         after_pass.push(work.contour());
     }
     mark_steady(&mut steps, passes.len());
-    Forming {
+    tick(total, total)?;
+    Ok(Forming {
         initial: initial.clone(),
         after_pass,
         steps,
         chord,
-    }
+    })
 }
 
 /// The dresser's periphery at `centre` over `[xa, xb]`: the template's

@@ -177,6 +177,9 @@ pub enum ProgramError {
     /// (`layers[1].windAngle`).
     #[error(transparent)]
     WindFile(#[from] WindFileError),
+    /// The run was cancelled by its progress hook.
+    #[error(transparent)]
+    Cancelled(#[from] formcam_progress::Cancelled),
     /// The program could not be written to its destination.
     #[error("cannot write the program: {0}")]
     Write(#[from] std::io::Error),

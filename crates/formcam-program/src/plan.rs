@@ -5,6 +5,7 @@
 use formcam_geom::Cylinder;
 use formcam_machine::{AxisTrack, MachineKind, solve};
 use formcam_machine::{Machine, Target, band_passed, placement_targets, winder_targets};
+use formcam_progress::{Phase, Progress, Silent, Step, Tally};
 use formcam_winding::eye::{EyeSpec, EyeTrajectory, eye_trajectory};
 use formcam_winding::job::{LayerKind, Mandrel, WindingSpec};
 use formcam_winding::{Circuit, Layer, WindingError, plan_layer};
@@ -127,6 +128,16 @@ pub fn plan_program(job: &WindJob) -> Result<WoundProgram, ProgramError> {
 /// Plans `job` up to `stage`. A program that breaks a check the job does
 /// not accept is refused.
 pub fn plan_until(job: &WindJob, stage: Stage) -> Result<WoundProgram, ProgramError> {
+    plan_until_with(job, stage, &Silent)
+}
+
+/// [`plan_until`] reporting to `progress` per layer and phase (path, eye,
+/// axes, blocks, assembly); [`ProgramError::Cancelled`] when it asks to stop.
+pub fn plan_until_with(
+    job: &WindJob,
+    stage: Stage,
+    progress: &dyn Progress,
+) -> Result<WoundProgram, ProgramError> {
     let layered = job.is_layered();
     if layered && stage < Stage::Program {
         return Err(ProgramError::LayeredStage);
@@ -148,7 +159,7 @@ pub fn plan_until(job: &WindJob, stage: Stage) -> Result<WoundProgram, ProgramEr
     warnings.extend(job.mandrel.warnings());
     let eye = job.eye.as_ref().map(|e| e.spec(read)).transpose()?;
     // 1. Every layer in order, each on the mandrel grown by those before.
-    let mut layers = plan_layers(job, &mut warnings)?;
+    let mut layers = plan_layers(job, &mut warnings, progress)?;
     let placement = machine.is_some_and(|m| m.machine.roles.kind == MachineKind::Placement);
     let with_eye = stage >= Stage::Eye && !placement;
     if with_eye && eye.is_none() {
@@ -156,12 +167,13 @@ pub fn plan_until(job: &WindJob, stage: Stage) -> Result<WoundProgram, ProgramEr
     }
     // 2. Eye, axes and blocks of every winding layer, in parallel.
     let eye = if with_eye { eye.as_ref() } else { None };
+    let phases = Phases::new(stage, &layers, progress);
     let done: Vec<Result<Option<LayerBlocks>, ProgramError>> = layers
         .par_iter_mut()
         .enumerate()
         .map(|(i, l)| match &mut l.body {
             LayerBody::Skip { .. } => Ok(None),
-            LayerBody::Wind(w) => wind_layer(job, stage, machine, eye, &l.label, l.one_way, w)
+            LayerBody::Wind(w) => wind_layer(job, &phases, machine, eye, &l.label, l.one_way, w)
                 .map_err(|e| in_layer_error(layered, i + 1, e)),
         })
         .collect();
@@ -181,6 +193,7 @@ pub fn plan_until(job: &WindJob, stage: Stage) -> Result<WoundProgram, ProgramEr
     if let (Stage::Program, Some(m)) = (stage, machine) {
         // 3. In order: the layers' blocks (a skip starts where the layer
         // before ends), the checks, the whole program.
+        progress.checkpoint(Step::new(Phase::Assembly, 0, 1))?;
         let blocks = in_order(job, &m.machine, &wound.layers, own)?;
         let violated: Vec<Violated> = blocks.iter().flat_map(|b| b.violated.clone()).collect();
         enforce(&job.allow, &violated)?;
@@ -194,13 +207,18 @@ pub fn plan_until(job: &WindJob, stage: Stage) -> Result<WoundProgram, ProgramEr
         enforce(&job.allow, &program.violated)?;
         wound.blocks = blocks;
         wound.program = Some(program);
+        progress.checkpoint(Step::new(Phase::Assembly, 1, 1))?;
     }
     Ok(wound)
 }
 
 /// The layers of a job planned in order: skips as they are, winding layers
 /// on the mandrel grown by the layers before.
-fn plan_layers(job: &WindJob, warnings: &mut Vec<String>) -> Result<Vec<WoundLayer>, ProgramError> {
+fn plan_layers(
+    job: &WindJob,
+    warnings: &mut Vec<String>,
+    progress: &dyn Progress,
+) -> Result<Vec<WoundLayer>, ProgramError> {
     let read = |name: &str| {
         let p = job.base_dir.join(name);
         std::fs::read_to_string(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))
@@ -209,7 +227,9 @@ fn plan_layers(job: &WindJob, warnings: &mut Vec<String>) -> Result<Vec<WoundLay
     let specs = job.layers.specs();
     let mut grown = 0.0;
     let mut out = Vec::with_capacity(specs.len());
+    let total = specs.len() as u64;
     for (i, w) in specs.iter().enumerate() {
+        progress.checkpoint(Step::new(Phase::Path, i as u64, total))?;
         let kind = w.kind.unwrap_or_default();
         let label = if layered {
             format!("layer {} ({kind})", i + 1)
@@ -268,7 +288,29 @@ fn plan_layers(job: &WindJob, warnings: &mut Vec<String>) -> Result<Vec<WoundLay
         });
         grown += thickness;
     }
+    progress.checkpoint(Step::new(Phase::Path, total, total))?;
     Ok(out)
+}
+
+/// How far a run goes and the count of its per-layer phases, which the
+/// layers report in parallel.
+struct Phases<'p> {
+    stage: Stage,
+    eye: Tally<'p>,
+    axes: Tally<'p>,
+    blocks: Tally<'p>,
+}
+
+impl<'p> Phases<'p> {
+    fn new(stage: Stage, layers: &[WoundLayer], progress: &'p dyn Progress) -> Self {
+        let n = layers.iter().filter(|l| l.wound().is_some()).count() as u64;
+        Self {
+            stage,
+            eye: Tally::new(progress, Phase::Eye, n),
+            axes: Tally::new(progress, Phase::Axes, n),
+            blocks: Tally::new(progress, Phase::Blocks, n),
+        }
+    }
 }
 
 /// A hoop layer on a vessel covers its cylinder: planned on that cylinder,
@@ -306,7 +348,7 @@ fn in_layer_error(layered: bool, layer: usize, e: ProgramError) -> ProgramError 
 /// The eye, the axes and the blocks of one winding layer, as far as `stage`.
 fn wind_layer(
     job: &WindJob,
-    stage: Stage,
+    phases: &Phases<'_>,
     machine: Option<&JobMachine>,
     eye: Option<&EyeSpec>,
     label: &str,
@@ -314,12 +356,15 @@ fn wind_layer(
     w: &mut Wound,
 ) -> Result<Option<LayerBlocks>, ProgramError> {
     if let Some(spec) = eye {
+        phases.eye.start()?;
         w.eye = Some(eye_trajectory(&w.mandrel, &w.layer, spec)?);
+        phases.eye.add(1)?;
     }
     let Some(jm) = machine else {
         return Ok(None);
     };
     let m = &jm.machine;
+    phases.axes.start()?;
     let mut targets = targets_for(m, &w.mandrel, &w.layer, w.eye.as_ref(), eye);
     for t in &mut targets {
         t.point.z += w.z_shift;
@@ -340,7 +385,9 @@ fn wind_layer(
         source,
     })?;
     w.passed = band_passed(m, &targets, &track);
-    let blocks = if stage == Stage::Program {
+    phases.axes.add(1)?;
+    let blocks = if phases.stage == Stage::Program {
+        phases.blocks.start()?;
         let mut b = layer_blocks(
             label,
             m,
@@ -352,6 +399,7 @@ fn wind_layer(
         if let Some(t) = &w.eye {
             b.violated.extend(eye_violations(label, &t.violations));
         }
+        phases.blocks.add(1)?;
         Some(b)
     } else {
         None

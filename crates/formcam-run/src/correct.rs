@@ -12,9 +12,10 @@ use std::path::{Path, PathBuf};
 use formcam_correct::simulate::LoopResult;
 use formcam_correct::{
     CorrectError, Correction, CorrectionJob, Grid, JobField, Measurements, MillingProgram,
-    ScenarioJob, correct_program,
+    ScenarioJob, correct_program_with,
 };
 use formcam_plot::{convergence_svg, deviations_svg, displacement_svg};
+use formcam_progress::{Phase, Progress, Silent, Step};
 use serde_json::{Value, json};
 
 use crate::{ResultFile, RunError, RunOutput};
@@ -145,11 +146,23 @@ pub fn correct(
     output: &Path,
     history: Option<&History>,
 ) -> Result<Corrected, RunError> {
+    correct_with(job, output, history, &Silent)
+}
+
+/// [`correct`] reporting to `progress` (the grid, the nodes, the files);
+/// [`RunError::Cancelled`] when it asks to stop.
+pub fn correct_with(
+    job: &CorrectionJob,
+    output: &Path,
+    history: Option<&History>,
+    progress: &dyn Progress,
+) -> Result<Corrected, RunError> {
     let name = file_name(output)?;
     let stem = output
         .file_stem()
         .map_or_else(|| "corrected".into(), |f| f.to_string_lossy().into_owned());
-    let (mut run, report) = correct_to(job, Form::Flags, output, &name, &stem, history)?;
+    let (mut run, report) =
+        correct_to(job, Form::Flags, (output, &name, &stem), history, progress)?;
     match history {
         Some(_) => Ok(Corrected {
             run,
@@ -167,6 +180,16 @@ pub fn correct(
 /// `corrected.<ext>` (the program's extension), its plots and a fresh
 /// `report.json`.
 pub fn correct_job(path: &Path, text: &str, out_dir: &Path) -> Result<RunOutput, RunError> {
+    correct_job_with(path, text, out_dir, &Silent)
+}
+
+/// [`correct_job`] reporting to `progress`.
+pub fn correct_job_with(
+    path: &Path,
+    text: &str,
+    out_dir: &Path,
+    progress: &dyn Progress,
+) -> Result<RunOutput, RunError> {
     let base = path.parent().unwrap_or(Path::new("."));
     let job = CorrectionJob::from_toml(text, base).map_err(|source| CorrectRunError::File {
         path: path.to_path_buf(),
@@ -178,20 +201,25 @@ pub fn correct_job(path: &Path, text: &str, out_dir: &Path) -> Result<RunOutput,
         .map_or_else(|| "nc".into(), |e| e.to_string_lossy().into_owned());
     let name = format!("corrected.{ext}");
     let output = out_dir.join(&name);
-    let (mut run, report) = correct_to(&job, Form::Job(path), &output, &name, "corrected", None)?;
+    let (mut run, report) = correct_to(
+        &job,
+        Form::Job(path),
+        (&output, &name, "corrected"),
+        None,
+        progress,
+    )?;
     run.files.push(ResultFile::new("report.json", report));
     Ok(run)
 }
 
-/// The correction's program and plots (named `name`, `<stem>.*.svg`), the
-/// line, and the report's text.
+/// The correction's program `output` and plots (named `name`,
+/// `<stem>.*.svg`), the line, and the report's text.
 fn correct_to(
     job: &CorrectionJob,
     form: Form<'_>,
-    output: &Path,
-    name: &str,
-    stem: &str,
+    (output, name, stem): (&Path, &str, &str),
     history: Option<&History>,
+    progress: &dyn Progress,
 ) -> Result<(RunOutput, Vec<u8>), RunError> {
     let fail = |e: CorrectError| failure(e, job, form);
     job.settings.check().map_err(fail)?;
@@ -208,7 +236,8 @@ fn correct_to(
             source,
         }
     })?;
-    let c = correct_program(&measurements, &program, &job.settings).map_err(fail)?;
+    let c = correct_program_with(&measurements, &program, &job.settings, progress).map_err(fail)?;
+    progress.checkpoint(Step::new(Phase::Files, 0, 1))?;
     let report = report_json(job, output, &c, history)?;
     let files = vec![
         ResultFile::new(name, c.applied.text.clone()),
@@ -231,6 +260,7 @@ fn correct_to(
         r.max_deviation_mm,
         r.max_displacement_mm
     );
+    progress.checkpoint(Step::new(Phase::Files, 1, 1))?;
     Ok((
         RunOutput {
             files,
@@ -380,6 +410,17 @@ fn pretty(v: &Value) -> Result<Vec<u8>, CorrectRunError> {
 /// `deviations-before.svg`, `deviations-after.svg`, `convergence.svg` and
 /// `report.json` (with the section-spacing study).
 pub fn correct_simulate(path: &Path, text: &str, out_dir: &Path) -> Result<RunOutput, RunError> {
+    correct_simulate_with(path, text, out_dir, &Silent)
+}
+
+/// [`correct_simulate`] reporting to `progress` (the rounds, the
+/// section-spacing study, the files).
+pub fn correct_simulate_with(
+    path: &Path,
+    text: &str,
+    out_dir: &Path,
+    progress: &dyn Progress,
+) -> Result<RunOutput, RunError> {
     let at = |source: CorrectError| CorrectRunError::File {
         path: path.to_path_buf(),
         source,
@@ -388,12 +429,15 @@ pub fn correct_simulate(path: &Path, text: &str, out_dir: &Path) -> Result<RunOu
         scenario,
         section_study,
     } = ScenarioJob::from_toml(text).map_err(at)?;
-    let result = scenario.run().map_err(at)?;
+    let result = scenario.run_with(progress).map_err(at)?;
     let rows = if section_study.is_empty() {
         Vec::new()
     } else {
-        scenario.spacing_study(&section_study).map_err(at)?
+        scenario
+            .spacing_study_with(&section_study, progress)
+            .map_err(at)?
     };
+    progress.checkpoint(Step::new(Phase::Files, 0, 1))?;
     let (Some(first), Some(last)) = (result.rounds.first(), result.rounds.last()) else {
         return Err(at(CorrectError::Scenario("the loop ran no round".into())).into());
     };
@@ -457,6 +501,7 @@ pub fn correct_simulate(path: &Path, text: &str, out_dir: &Path) -> Result<RunOu
         "section_study": study,
     });
     files.push(ResultFile::new("report.json", pretty(&report)?));
+    progress.checkpoint(Step::new(Phase::Files, 1, 1))?;
     Ok(RunOutput {
         files,
         line: loop_line(out_dir, &result),

@@ -10,8 +10,9 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use formcam_dress::{Contour, DressError, DressJob, Dressing, Point, dress as run_dressing};
+use formcam_dress::{Contour, DressError, DressJob, Dressing, Point, dress_with as run_dressing};
 use formcam_nc::Dialect;
+use formcam_progress::{Phase, Progress, Silent, Step};
 use serde_json::json;
 
 use crate::{ResultFile, RunError, RunOutput};
@@ -23,14 +24,29 @@ pub fn is_dress_job(table: &toml::Table) -> bool {
 
 /// Runs the dressing job in the file `job`.
 pub fn dress(job: &Path) -> Result<RunOutput, RunError> {
+    dress_with(job, &Silent)
+}
+
+/// [`dress`] reporting to `progress` (the simulation of forming, the
+/// files); [`RunError::Cancelled`] when it asks to stop.
+pub fn dress_with(job: &Path, progress: &dyn Progress) -> Result<RunOutput, RunError> {
     let text = fs::read_to_string(job)
         .map_err(|e| dress_error(job, "", format!("cannot read the job file: {e}")))?;
-    dress_text(job, &text)
+    dress_text_with(job, &text, progress)
 }
 
 /// [`dress`] for a job already read from `job` (which places the files it
 /// names and names the job in messages).
 pub fn dress_text(job: &Path, text: &str) -> Result<RunOutput, RunError> {
+    dress_text_with(job, text, &Silent)
+}
+
+/// [`dress_text`] reporting to `progress`.
+pub fn dress_text_with(
+    job: &Path,
+    text: &str,
+    progress: &dyn Progress,
+) -> Result<RunOutput, RunError> {
     let t0 = Instant::now();
     let parsed = DressJob::from_toml(text).map_err(|e| job_error(job, e))?;
     let warnings = parsed.warnings();
@@ -39,7 +55,8 @@ pub fn dress_text(job: &Path, text: &str) -> Result<RunOutput, RunError> {
         None => None,
     };
     let spec = parsed.spec(initial).map_err(|e| job_error(job, e))?;
-    let d = run_dressing(&spec).map_err(|e| job_error(job, e))?;
+    let d = run_dressing(&spec, progress).map_err(|e| job_error(job, e))?;
+    progress.checkpoint(Step::new(Phase::Files, 0, 1))?;
     let cls = d.nc(Dialect::Cldata).map_err(|e| job_error(job, e))?;
     let mpf = d
         .nc(Dialect::Sinumerik840d)
@@ -77,6 +94,7 @@ pub fn dress_text(job: &Path, text: &str) -> Result<RunOutput, RunError> {
         ratio(d.feed.ratio_controlled),
         t0.elapsed().as_secs_f64() * 1e3,
     );
+    progress.checkpoint(Step::new(Phase::Files, 1, 1))?;
     Ok(RunOutput {
         files,
         line,
@@ -102,6 +120,7 @@ fn job_error(job: &Path, e: DressError) -> RunError {
             column,
             message,
         } => dress_error(job, &format!(":{line}:{column}"), message),
+        DressError::Cancelled(c) => RunError::Cancelled(c),
         e => dress_error(job, "", e.to_string()),
     }
 }

@@ -2,6 +2,10 @@
 
 use std::path::PathBuf;
 
+use formcam_correct::CorrectError;
+use formcam_program::ProgramError;
+use formcam_progress::Cancelled;
+
 /// Why a run failed. Every variant names the file it concerns.
 #[derive(Debug, thiserror::Error)]
 pub enum RunError {
@@ -65,15 +69,42 @@ pub enum RunError {
     },
     /// A correction or a closed loop that failed.
     #[error(transparent)]
-    Correct(#[from] crate::correct::CorrectRunError),
+    Correct(crate::correct::CorrectRunError),
+    /// The run was cancelled by its progress hook; nothing is written.
+    #[error(transparent)]
+    Cancelled(#[from] Cancelled),
+}
+
+impl From<crate::correct::CorrectRunError> for RunError {
+    /// A correction's error; a cancelled one is [`RunError::Cancelled`].
+    fn from(e: crate::correct::CorrectRunError) -> Self {
+        use crate::correct::CorrectRunError as E;
+        match e {
+            E::Other(CorrectError::Cancelled(c))
+            | E::File {
+                source: CorrectError::Cancelled(c),
+                ..
+            } => Self::Cancelled(c),
+            e => Self::Correct(e),
+        }
+    }
 }
 
 impl RunError {
-    /// A winding job's error, naming the job file.
-    pub fn wind(path: &std::path::Path, source: formcam_program::ProgramError) -> Self {
-        Self::Wind {
-            path: path.to_path_buf(),
-            source: Box::new(source),
+    /// A winding job's error, naming the job file (a cancelled run is
+    /// [`RunError::Cancelled`]).
+    pub fn wind(path: &std::path::Path, source: ProgramError) -> Self {
+        match source {
+            ProgramError::Cancelled(c) => Self::Cancelled(c),
+            source => Self::Wind {
+                path: path.to_path_buf(),
+                source: Box::new(source),
+            },
         }
+    }
+
+    /// Whether the run was cancelled by its progress hook.
+    pub fn is_cancelled(&self) -> bool {
+        matches!(self, Self::Cancelled(_))
     }
 }

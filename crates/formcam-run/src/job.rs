@@ -8,7 +8,11 @@ use std::path::{Path, PathBuf};
 
 use formcam_correct::{CorrectionJob, ScenarioJob};
 
-use crate::{RunError, RunOutput, correct_job, correct_simulate, dress_text, is_dress_job};
+use formcam_progress::{Progress, Silent};
+
+use crate::{
+    RunError, RunOutput, correct_job_with, correct_simulate_with, dress_text_with, is_dress_job,
+};
 
 /// What a job file holds, and so which run it takes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -48,11 +52,21 @@ impl JobKind {
 /// document keeps the eye at the default clearance and accepts no failed
 /// check; a winding TOML runs as far as its tables go.
 pub fn run_job_file(path: &Path, out: &Path) -> Result<RunOutput, RunError> {
+    run_job_file_with(path, out, &Silent)
+}
+
+/// [`run_job_file`] reporting to `progress` (each kind's phases);
+/// [`RunError::Cancelled`] when it asks to stop.
+pub fn run_job_file_with(
+    path: &Path,
+    out: &Path,
+    progress: &dyn Progress,
+) -> Result<RunOutput, RunError> {
     let text = fs::read_to_string(path).map_err(|source| RunError::ReadJob {
         path: path.to_path_buf(),
         source,
     })?;
-    run_job_text(path, &text, JobKind::of(path, &text), out)
+    run_job_text_with(path, &text, JobKind::of(path, &text), out, progress)
 }
 
 /// [`run_job_file`] for a job whose `text` and `kind` the caller has
@@ -63,12 +77,29 @@ pub fn run_job_text(
     kind: JobKind,
     out: &Path,
 ) -> Result<RunOutput, RunError> {
+    run_job_text_with(path, text, kind, out, &Silent)
+}
+
+/// [`run_job_text`] reporting to `progress`.
+pub fn run_job_text_with(
+    path: &Path,
+    text: &str,
+    kind: JobKind,
+    out: &Path,
+    progress: &dyn Progress,
+) -> Result<RunOutput, RunError> {
     match kind {
-        JobKind::WindFile => crate::wind_file(path, out, formcam_program::EYE_CLEARANCE_MM, &[]),
-        JobKind::Winding => crate::wind_furthest(path, out),
-        JobKind::Correction => correct_job(path, text, out),
-        JobKind::Scenario => correct_simulate(path, text, out),
-        JobKind::Dressing => Ok(dressing_for(path, out, dress_text(path, text)?)),
+        JobKind::WindFile => {
+            crate::wind_file_with(path, out, formcam_program::EYE_CLEARANCE_MM, &[], progress)
+        }
+        JobKind::Winding => crate::wind_furthest_with(path, out, progress),
+        JobKind::Correction => correct_job_with(path, text, out, progress),
+        JobKind::Scenario => correct_simulate_with(path, text, out, progress),
+        JobKind::Dressing => Ok(dressing_for(
+            path,
+            out,
+            dress_text_with(path, text, progress)?,
+        )),
     }
 }
 

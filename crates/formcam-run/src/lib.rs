@@ -5,6 +5,10 @@
 //! returns the files of the result (programs, tables, `summary.json`, plots)
 //! with the one line a caller prints. The command line, the local server and
 //! bindings call these functions and only decide where the files go.
+//!
+//! Each run has a `_with` form taking a progress and cancel hook
+//! ([`progress::Progress`]); a cancelled run is [`RunError::Cancelled`] and
+//! returns no files.
 
 mod correct;
 mod dress;
@@ -14,11 +18,15 @@ mod job;
 mod wind;
 
 pub use correct::{
-    CorrectRunError, Corrected, History, correct, correct_job, correct_simulate, output_folder,
-    read_measurements,
+    CorrectRunError, Corrected, History, correct, correct_job, correct_job_with, correct_simulate,
+    correct_simulate_with, correct_with, output_folder, read_measurements,
 };
-pub use dress::{dress, dress_text, is_dress_job};
+pub use dress::{dress, dress_text, dress_text_with, dress_with, is_dress_job};
 pub use error::RunError;
 pub use files::{ResultFile, RunOutput};
-pub use job::{JobKind, demo, demo_folder, dressing_for, run_job_file, run_job_text};
-pub use wind::{wind, wind_file, wind_furthest};
+pub use formcam_progress as progress;
+pub use job::{
+    JobKind, demo, demo_folder, dressing_for, run_job_file, run_job_file_with, run_job_text,
+    run_job_text_with,
+};
+pub use wind::{wind, wind_file, wind_file_with, wind_furthest, wind_furthest_with, wind_with};

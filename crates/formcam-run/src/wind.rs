@@ -12,8 +12,9 @@ use formcam_machine::AxisTrack;
 use formcam_machine::Machine;
 use formcam_program::{
     Assembled, Check, MachineSource, ProgramError, Stage, WindJob, Wound, WoundLayer, WoundProgram,
-    nc, plan_until, write_program,
+    nc, plan_until_with, write_program,
 };
+use formcam_progress::{Phase, Progress, Silent, Step};
 use formcam_winding::Layer;
 use formcam_winding::eye::EyeTrajectory;
 use serde_json::{Map, Value, json};
@@ -23,17 +24,37 @@ use crate::{ResultFile, RunError, RunOutput};
 /// `formcam wind [path|eye|axes] JOB -o OUT`: the job at `job` run up to
 /// `stage`; `out` is only named in the line.
 pub fn wind(job: &Path, out: &Path, stage: Stage) -> Result<RunOutput, RunError> {
+    wind_with(job, out, stage, &Silent)
+}
+
+/// [`wind`] reporting to `progress` (the pipeline's phases, the post, the
+/// files); [`RunError::Cancelled`] when it asks to stop.
+pub fn wind_with(
+    job: &Path,
+    out: &Path,
+    stage: Stage,
+    progress: &dyn Progress,
+) -> Result<RunOutput, RunError> {
     let t0 = Instant::now();
     let wj = read_job(job)?;
-    run(job, out, &wj, stage, t0)
+    run(job, out, &wj, stage, t0, progress)
 }
 
 /// The job at `job` run as far as its tables reach (the demo's rule, see
 /// [`WindJob::furthest_stage`]).
 pub fn wind_furthest(job: &Path, out: &Path) -> Result<RunOutput, RunError> {
+    wind_furthest_with(job, out, &Silent)
+}
+
+/// [`wind_furthest`] reporting to `progress`.
+pub fn wind_furthest_with(
+    job: &Path,
+    out: &Path,
+    progress: &dyn Progress,
+) -> Result<RunOutput, RunError> {
     let t0 = Instant::now();
     let wj = read_job(job)?;
-    run(job, out, &wj, wj.furthest_stage(), t0)
+    run(job, out, &wj, wj.furthest_stage(), t0, progress)
 }
 
 /// `formcam wind JOB.wind -o OUT`: a Cyclone/FiberPath `.wind` job on the
@@ -45,6 +66,17 @@ pub fn wind_file(
     eye_clearance: f64,
     allow: &[Check],
 ) -> Result<RunOutput, RunError> {
+    wind_file_with(path, out, eye_clearance, allow, &Silent)
+}
+
+/// [`wind_file`] reporting to `progress`.
+pub fn wind_file_with(
+    path: &Path,
+    out: &Path,
+    eye_clearance: f64,
+    allow: &[Check],
+    progress: &dyn Progress,
+) -> Result<RunOutput, RunError> {
     let t0 = Instant::now();
     let text = std::fs::read_to_string(path).map_err(|source| RunError::Read {
         path: path.to_path_buf(),
@@ -53,7 +85,7 @@ pub fn wind_file(
     let wj = WindJob::from_wind(&text, eye_clearance, allow)
         .map_err(|e| RunError::wind(path, e))?
         .named(path);
-    let mut output = run(path, out, &wj, Stage::Program, t0)?;
+    let mut output = run(path, out, &wj, Stage::Program, t0, progress)?;
     if let Some(w) = &wj.wind_file {
         let _ = write!(
             output.line,
@@ -83,22 +115,27 @@ fn run(
     job: &WindJob,
     stage: Stage,
     t0: Instant,
+    progress: &dyn Progress,
 ) -> Result<RunOutput, RunError> {
     let at = |e: ProgramError| RunError::wind(path, e);
-    let wound = plan_until(job, stage).map_err(at)?;
+    let wound = plan_until_with(job, stage, progress).map_err(at)?;
     let program = match &wound.program {
         Some(p) => {
+            progress.checkpoint(Step::new(Phase::Post, 0, 1))?;
             let mut text = Vec::new();
             write_program(&wound, &mut text).map_err(at)?;
+            progress.checkpoint(Step::new(Phase::Post, 1, 1))?;
             Some((p, text))
         }
         None => None,
     };
+    progress.checkpoint(Step::new(Phase::Files, 0, 1))?;
     let mut output = if job.is_layered() {
         layered(job, &wound, program)?
     } else {
         single(path, job, &wound, program)?
     };
+    progress.checkpoint(Step::new(Phase::Files, 1, 1))?;
     let _ = write!(
         output.line,
         ", {:.1} ms -> {}",

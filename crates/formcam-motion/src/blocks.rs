@@ -5,8 +5,9 @@
 //! intersection of one interval per sample. Those running intersections are
 //! kept from `s` on (one buffer for every block), so whether the block to `e`
 //! fits is read off in `O(width)` instead of checking every sample again.
-//! A slope within a hair of an interval's edge is decided by the direct check
-//! of every sample, so the blocks are exactly those of that check.
+//! Each interval is kept for the tolerance less and plus a margin far above
+//! the rounding: a slope between the two is decided by the direct check of
+//! every sample, so the blocks are exactly those of that check.
 
 use crate::MotionError;
 
@@ -143,7 +144,9 @@ struct Fit<'a> {
     /// The block's start.
     s: usize,
     /// Per sample `k = s + 1 + i`, per axis: the least and greatest slope
-    /// that keep samples `s + 1 ..= k` within tolerance (`2 width` each).
+    /// that keep samples `s + 1 ..= k` within the tolerance less the margin
+    /// (every sample surely fits), and within it plus the margin (no sample
+    /// surely misses): `4 width` each.
     bounds: Vec<f64>,
     /// The interpolated axes of the direct check.
     q: Vec<f64>,
@@ -194,22 +197,29 @@ impl<'a> Fit<'a> {
     fn grow_to(&mut self, k: usize) {
         let (s, w) = (self.s, self.width);
         let a = self.row(s);
-        while self.s + self.bounds.len() / (2 * w) < k {
-            let i = self.s + 1 + self.bounds.len() / (2 * w);
+        while s + self.bounds.len() / (4 * w) < k {
+            let i = s + 1 + self.bounds.len() / (4 * w);
             let lever = self.x[i] - self.x[s];
             let r = self.row(i);
             let from = self.bounds.len();
             for j in 0..w {
-                let lo = (r[j] - self.tol.axes[j] - a[j]) / lever;
-                let hi = (r[j] + self.tol.axes[j] - a[j]) / lever;
-                let (lo, hi) = if from == 0 {
-                    (lo, hi)
-                } else {
-                    let p = from - 2 * w + 2 * j;
-                    (lo.max(self.bounds[p]), hi.min(self.bounds[p + 1]))
-                };
-                self.bounds.push(lo);
-                self.bounds.push(hi);
+                let (t, e) = (self.tol.axes[j], self.margin[j]);
+                let mut b = [
+                    (r[j] - (t - e) - a[j]) / lever,
+                    (r[j] + (t - e) - a[j]) / lever,
+                    (r[j] - (t + e) - a[j]) / lever,
+                    (r[j] + (t + e) - a[j]) / lever,
+                ];
+                if from > 0 {
+                    let p = &self.bounds[from - 4 * w + 4 * j..from - 4 * w + 4 * j + 4];
+                    b = [
+                        b[0].max(p[0]),
+                        b[1].min(p[1]),
+                        b[2].max(p[2]),
+                        b[3].min(p[3]),
+                    ];
+                }
+                self.bounds.extend_from_slice(&b);
             }
         }
     }
@@ -225,20 +235,15 @@ impl<'a> Fit<'a> {
         let w = self.width;
         let (a, b) = (self.row(s), self.row(e));
         let span = self.x[e] - self.x[s];
-        // Every sample's slack is at least the slope's distance from the
-        // interval's edge times its lever, and the shortest lever is the
-        // first sample's.
-        let lever = self.x[s + 1] - self.x[s];
-        let at = (e - 1 - (s + 1)) * 2 * w;
+        let at = (e - 1 - (s + 1)) * 4 * w;
         let mut sure = true;
         for j in 0..w {
             let m = (b[j] - a[j]) / span;
-            let (lo, hi) = (self.bounds[at + 2 * j], self.bounds[at + 2 * j + 1]);
-            let d = self.margin[j] / lever;
-            if m < lo - d || m > hi + d {
+            let c = &self.bounds[at + 4 * j..at + 4 * j + 4];
+            if m < c[2] || m > c[3] {
                 return false;
             }
-            sure &= m >= lo + d && m <= hi - d;
+            sure &= m >= c[0] && m <= c[1];
         }
         if sure && (self.deviation.is_none() || self.tol.position_mm.is_none()) {
             return true;

@@ -116,8 +116,18 @@ pub struct Wound {
     pub targets: Vec<Target>,
     /// The machine's axes there (from [`Stage::Axes`]).
     pub track: Option<AxisTrack>,
-    /// The band length past each key point of the band path, per target.
-    pub passed: Vec<Vec<f64>>,
+}
+
+impl Wound {
+    /// The band length past each key point of the band path of `m` (the
+    /// machine it was planned on), per target, mm; empty before
+    /// [`Stage::Axes`]. Computed on demand: only `band.csv` and the summary
+    /// read it, a program does not.
+    pub fn band_passed(&self, m: &Machine) -> Vec<Vec<f64>> {
+        self.track
+            .as_ref()
+            .map_or_else(Vec::new, |track| band_passed(m, &self.targets, track))
+    }
 }
 
 /// Plans the whole program of `job`.
@@ -283,7 +293,6 @@ fn plan_layers(
                 eye: None,
                 targets: Vec::new(),
                 track: None,
-                passed: Vec::new(),
             })),
         });
         grown += thickness;
@@ -384,7 +393,6 @@ fn wind_layer(
         file: jm.source.as_str().to_string(),
         source,
     })?;
-    w.passed = band_passed(m, &targets, &track);
     phases.axes.add(1)?;
     let blocks = if phases.stage == Stage::Program {
         phases.blocks.start()?;

@@ -196,10 +196,11 @@ fn single(
     }
     if let (Some(m), Some(track), Some(jm)) = (&wound.machine, &l.track, &job.machine) {
         files.push(ResultFile::new("axes.csv", axes_csv(m, l, track)));
+        let passed = l.band_passed(m);
         if !m.roles.band_path.is_empty() {
-            files.push(ResultFile::new("band.csv", band_csv(m, l)));
+            files.push(ResultFile::new("band.csv", band_csv(m, l, &passed)));
         }
-        add_axes_summary(&mut summary, m, &jm.source, track, l.passed.last());
+        add_axes_summary(&mut summary, m, &jm.source, track, passed.last());
         let mut program_line = String::new();
         if let Some((p, text)) = program {
             let (pf, fields, line) = program_files(m, p, wound, text);
@@ -279,7 +280,11 @@ fn layered(
             None => (true, 0.0),
         };
         if !m.roles.band_path.is_empty() {
-            files.push(ResultFile::new(format!("{dir}/band.csv"), band_csv(m, w)));
+            let passed = w.band_passed(m);
+            files.push(ResultFile::new(
+                format!("{dir}/band.csv"),
+                band_csv(m, w, &passed),
+            ));
         }
         per_layer.push(json!({
             "layer": i + 1,
@@ -525,13 +530,13 @@ fn axes_csv(m: &Machine, w: &Wound, track: &AxisTrack) -> Vec<u8> {
     s.into_bytes()
 }
 
-fn band_csv(m: &Machine, w: &Wound) -> Vec<u8> {
+fn band_csv(m: &Machine, w: &Wound, passed: &[Vec<f64>]) -> Vec<u8> {
     let mut s = String::from("x");
     for &k in &m.roles.band_path {
         let _ = write!(s, ",{}", m.points[k].name);
     }
     s.push('\n');
-    for (t, row) in w.targets.iter().zip(&w.passed) {
+    for (t, row) in w.targets.iter().zip(passed) {
         let _ = write!(s, "{}", t.x);
         for v in row {
             let _ = write!(s, ",{v}");

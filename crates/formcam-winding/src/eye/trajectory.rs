@@ -95,9 +95,10 @@ const POINTS_PER_THREAD: usize = 20_000;
 type Run = (Vec<EyePoint>, Checks);
 
 /// A geometric trajectory over the `n + 1` circuit samples. Long circuits are cut
-/// into contiguous runs, one per worker of rayon's pool; each run is built in
-/// chunks (sample, solve, evaluate: each a loop of independent points), then
-/// checked, and the runs' checks are joined in order.
+/// into contiguous runs, one per worker of rayon's pool, each writing its own
+/// part of one buffer of points; each run is built in chunks (sample, solve,
+/// evaluate: each a loop of independent points), then checked, and the runs'
+/// checks are joined in order.
 fn geometric_points<M: Meridian>(
     circuit: &Circuit<'_, M>,
     n: usize,
@@ -110,38 +111,67 @@ fn geometric_points<M: Meridian>(
     let threads = rayon::current_num_threads()
         .min(total / POINTS_PER_THREAD)
         .clamp(1, 16);
-    let run =
-        |range: std::ops::Range<usize>| geometric_run(circuit, n, range, length, env, spec, k);
     let per = total.div_ceil(threads);
-    let runs: Vec<Result<Run, WindingError>> = if threads == 1 {
-        vec![run(0..total)]
-    } else {
-        (0..threads)
-            .into_par_iter()
-            .map(|t| run(t * per..((t + 1) * per).min(total)))
-            .collect()
+    let mut points = vec![BLANK; total];
+    let run = |(t, part): (usize, &mut [EyePoint])| {
+        let from = t * per;
+        geometric_run(
+            circuit,
+            n,
+            from..from + part.len(),
+            part,
+            length,
+            env,
+            spec,
+            k,
+        )
     };
-    join_runs(runs)
+    let checks: Vec<Result<Checks, WindingError>> = if threads == 1 {
+        vec![run((0, &mut points))]
+    } else {
+        points.par_chunks_mut(per).enumerate().map(run).collect()
+    };
+    let checks = join_runs(&mut points, per, checks)?;
+    Ok((points, checks))
 }
 
-/// One run of a geometric trajectory: the circuit samples `range` of `n`, in
-/// chunks (sample, solve, evaluate), checked as they come.
+/// A point before it is computed.
+const BLANK: EyePoint = EyePoint {
+    x: 0.0,
+    z: 0.0,
+    r: 0.0,
+    v: 0.0,
+    alpha: 0.0,
+    l: 0.0,
+    margin: 0.0,
+    eye_z: 0.0,
+    eye_r: 0.0,
+    eye_v: 0.0,
+    lambda: 0.0,
+    u: 0.0,
+};
+
+/// One run of a geometric trajectory: the circuit samples `range` of `n`
+/// written to `out` (as long as the range), in chunks (sample, solve,
+/// evaluate), checked as they come.
+#[allow(clippy::too_many_arguments)]
 fn geometric_run<M: Meridian>(
     circuit: &Circuit<'_, M>,
     n: usize,
     range: std::ops::Range<usize>,
+    out: &mut [EyePoint],
     length: &Geometric<'_>,
     env: &Profile,
     spec: &EyeSpec,
     k: f64,
-) -> Result<Run, WindingError> {
+) -> Result<Checks, WindingError> {
     const CHUNK: usize = 1024;
-    let mut out = Vec::with_capacity(range.len());
     let mut checks = Checks::new();
     let mut length = length.clone();
     let mut samples = circuit.samples(n, range);
     let mut bands = Vec::with_capacity(CHUNK);
     let mut ls = Vec::with_capacity(CHUNK);
+    let mut from = 0;
     loop {
         bands.clear();
         bands.extend(samples.by_ref().take(CHUNK).map(|p| Band::new(&p)));
@@ -152,30 +182,39 @@ fn geometric_run<M: Meridian>(
         for b in &bands {
             ls.push(length.at(b)?);
         }
-        let from = out.len();
-        out.extend(bands.iter().zip(&ls).map(|(b, &l)| eye_point(b, l, env, k)));
-        checks.scan(&mut out, from, spec);
+        let to = from + bands.len();
+        for ((e, b), &l) in out[from..to].iter_mut().zip(&bands).zip(&ls) {
+            *e = eye_point(b, l, env, k);
+        }
+        checks.scan(&mut out[..to], from, spec);
+        from = to;
     }
-    Ok((out, checks))
+    Ok(checks)
 }
 
-/// The runs joined in order: the interval across each seam checked, the checks
-/// summed; the first run's error, if any.
-fn join_runs(runs: Vec<Result<Run, WindingError>>) -> Result<Run, WindingError> {
+/// The runs' checks joined in order (run `i` holds `points[i * per..]`): the
+/// interval across each seam checked, the checks summed; the first run's
+/// error, if any.
+fn join_runs(
+    points: &mut [EyePoint],
+    per: usize,
+    runs: Vec<Result<Checks, WindingError>>,
+) -> Result<Checks, WindingError> {
     let mut runs = runs.into_iter();
-    let (mut points, mut checks) = match runs.next() {
+    let mut checks = match runs.next() {
         Some(r) => r?,
-        None => (Vec::new(), Checks::new()),
+        None => Checks::new(),
     };
-    for r in runs {
-        let (next, c) = r?;
-        if let (Some(last), Some(first)) = (points.last_mut(), next.first()) {
-            checks.interval(last, first);
+    for (i, r) in runs.enumerate() {
+        let c = r?;
+        let seam = (i + 1) * per;
+        if seam > 0 && seam < points.len() {
+            let first = points[seam];
+            checks.interval(&mut points[seam - 1], &first);
         }
         checks.join(c);
-        points.extend(next);
     }
-    Ok((points, checks))
+    Ok(checks)
 }
 
 /// Builds the eye trajectory of `layer` (planned on `m`) as `spec` asks.

@@ -326,6 +326,14 @@ pub enum Condition {
         /// Its values that make this one required.
         words: &'static [&'static str],
     },
+    /// Another field of the same table does not hold one of these words
+    /// (left out, it does not).
+    Not {
+        /// The other field.
+        field: &'static str,
+        /// Its values that make this one optional.
+        words: &'static [&'static str],
+    },
     /// Another field of the same table is left out.
     Absent {
         /// The other field.
@@ -338,6 +346,9 @@ impl fmt::Display for Condition {
         match self {
             Condition::Is { field, words } => {
                 write!(f, "when {field} = {}", words.join(" or "))
+            }
+            Condition::Not { field, words } => {
+                write!(f, "unless {field} = {}", words.join(" or "))
             }
             Condition::Absent { field } => write!(f, "unless {field} is given"),
         }

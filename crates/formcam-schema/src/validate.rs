@@ -328,6 +328,8 @@ impl Checker<'_> {
                     let holds = match c {
                         Condition::Is { field, words } => given(field)
                             .is_some_and(|(_, v)| v.as_str().is_some_and(|s| words.contains(&s))),
+                        Condition::Not { field, words } => !given(field)
+                            .is_some_and(|(_, v)| v.as_str().is_some_and(|s| words.contains(&s))),
                         Condition::Absent { field } => given(field).is_none(),
                     };
                     holds.then(|| format!("required {c}"))

@@ -37,10 +37,12 @@ pub enum SchemaError {
         allowed: String,
     },
     /// A key its table does not have.
-    #[error("{field} at {line}:{column}: unknown field; allowed: {allowed}")]
+    #[error("{field} at {line}:{column}: unknown field `{key}`; allowed: {allowed}")]
     UnknownKey {
         /// The dotted field.
         field: String,
+        /// The key as written.
+        key: String,
         /// Line (1-based).
         line: usize,
         /// Column (1-based).
@@ -307,8 +309,10 @@ impl Checker<'_> {
             match fields.iter().find(|f| f.name == key.get()) {
                 None => {
                     let allowed = fields.iter().map(|f| f.name).collect::<Vec<_>>().join(", ");
+                    let key = key.get().to_string();
                     self.push(key_at, |line, column| SchemaError::UnknownKey {
                         field: dotted,
+                        key,
                         line,
                         column,
                         allowed,

@@ -160,7 +160,7 @@ fn unknown_names_list_the_allowed_ones() {
     let e = err(&GOOD.replace("on = false", "of = false"));
     assert_eq!(
         e.to_string(),
-        "shape.of at 8:1: unknown field; allowed: kind, radius, samples, mu, segments, allow, file, on"
+        "shape.of at 8:1: unknown field `of`; allowed: kind, radius, samples, mu, segments, allow, file, on"
     );
     let e = err(&GOOD.replace("mu = 0.1", "mu = 0.1, z = 2"));
     assert!(

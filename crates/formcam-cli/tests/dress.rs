@@ -100,21 +100,29 @@ fn bad_jobs_stop_with_one_line_and_write_nothing() {
         (
             "contact_angle_deg = 45.0",
             "contact_angle_deg = 90.0",
-            "wheel.contact_angle_deg = 90°",
+            "wheel.contact_angle_deg = 90.0 at 5:21: out of range; allowed (0, 90) deg",
         ),
         (
             "contact_angle_deg = 45.0",
             "contact_angle_deg = -5.0",
-            "wheel.contact_angle_deg = -5°",
+            "wheel.contact_angle_deg = -5.0 at 5:21: out of range; allowed (0, 90) deg",
         ),
         ("r1 = 1.937", "r1 = 1.85", "wheel.r1 = 1.85 mm"),
-        ("step = 0.01", "step = 0.0", "process.step = 0 mm"),
+        (
+            "step = 0.01",
+            "step = 0.0",
+            "process.step = 0.0 at 19:8: out of range; allowed >= 0.0001 mm",
+        ),
         (
             "depth = 0.05",
             "depth = 2.5",
             "process.depth = 2.5 mm: larger than the wheel",
         ),
-        ("width = 6.0", "width = nan", "wheel.width = NaN mm"),
+        (
+            "width = 6.0",
+            "width = nan",
+            "wheel.width = nan at 8:9: out of range; allowed > 0 mm",
+        ),
         (
             "feed_max = 300.0",
             "feed_max = 300.0\nfeed_rate = 3",

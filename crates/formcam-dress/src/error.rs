@@ -35,6 +35,11 @@ pub enum DressError {
         /// What the TOML reader said.
         message: String,
     },
+    /// The job does not match its description ([`crate::DRESS_JOB`]): an
+    /// unknown table or field, a wrong type, a value out of range, a missing
+    /// field; each names the field, its `line:column` and what is allowed.
+    #[error(transparent)]
+    Schema(formcam_schema::SchemaError),
     /// A user's initial wheel contour cannot be used.
     #[error("process.initial_contour: {0}")]
     Contour(String),

@@ -24,6 +24,10 @@
 //! # feed_change_max = 25.0  # mm/min between neighbouring points
 //! ```
 
+use formcam_schema::{
+    Condition, Default as Given, Field, JobSchema, Kind, Range, Repeat, SchemaError, Table, Unit,
+    Value, validate,
+};
 use serde::Deserialize;
 
 use crate::{Allowance, DressError, DressSpec, DresserSpec, FeedSpec, Point, WheelSpec};
@@ -104,9 +108,22 @@ pub struct ProcessJob {
 }
 
 impl DressJob {
-    /// Reads a job; errors give the line and column and what the reader said
-    /// (unknown fields, missing fields, types).
+    /// Reads a job, validated first against [`DRESS_JOB`]: errors name the
+    /// field, its line and column and what is allowed (unknown tables and
+    /// fields, types, ranges, missing fields).
     pub fn from_toml(text: &str) -> Result<DressJob, DressError> {
+        validate(&DRESS_JOB, text).map_err(|e| match e {
+            SchemaError::Syntax {
+                line,
+                column,
+                message,
+            } => DressError::Toml {
+                line,
+                column,
+                message,
+            },
+            other => DressError::Schema(other),
+        })?;
         toml::from_str(text).map_err(|e| {
             let (line, column) = e.span().map_or((0, 0), |s| line_col(text, s.start));
             DressError::Toml {
@@ -192,6 +209,231 @@ impl DressJob {
     }
 }
 
+const fn field(
+    name: &'static str,
+    kind: Kind,
+    unit: Unit,
+    range: Option<Range>,
+    default: Given,
+    help: &'static str,
+) -> Field {
+    Field {
+        name,
+        kind,
+        unit,
+        range,
+        default,
+        help,
+    }
+}
+
+const POSITIVE: Option<Range> = Some(Range::above(0.0));
+/// The least corner radius of the dressing wheel, mm.
+const CORNER_MIN: Option<Range> = Some(Range::at_least(0.0002));
+
+/// `[wheel]`: the grinding wheel's profile.
+pub const WHEEL: Table = Table {
+    name: "wheel",
+    repeat: Repeat::Single,
+    required: true,
+    help: "the grinding wheel's gothic-arch profile",
+    fields: &[
+        field(
+            "ball_radius",
+            Kind::Number,
+            Unit::Mm,
+            POSITIVE,
+            Given::Required,
+            "the ball's radius `Rs`",
+        ),
+        field(
+            "contact_angle_deg",
+            Kind::Number,
+            Unit::Deg,
+            Some(Range::open(0.0, 90.0)),
+            Given::Required,
+            "the contact angle `α`",
+        ),
+        field(
+            "r1",
+            Kind::Number,
+            Unit::Mm,
+            POSITIVE,
+            Given::Required,
+            "the flank arcs' radius `R1`, above `Rs` (usually 1.03–1.05 `Rs`)",
+        ),
+        field(
+            "r2",
+            Kind::Number,
+            Unit::Mm,
+            POSITIVE,
+            Given::Required,
+            "the fillets' radius `R2`, small enough that the fillet ends inside the width",
+        ),
+        field(
+            "width",
+            Kind::Number,
+            Unit::Mm,
+            POSITIVE,
+            Given::Required,
+            "the wheel's width `B`",
+        ),
+        field(
+            "flank_tilt_deg",
+            Kind::Number,
+            Unit::Deg,
+            Some(Range::closed_open(0.0, 90.0)),
+            Given::Required,
+            "the flanks' tilt `τ`, below 90 − `arc_angle_deg`: the flanks fall toward the edges",
+        ),
+        field(
+            "arc_angle_deg",
+            Kind::Number,
+            Unit::Deg,
+            Some(Range::open(0.0, 90.0)),
+            Given::Value(Value::Number(ARC_ANGLE_DEG)),
+            "where the flank arc ends about its centre, `α2`, below `contact_angle_deg`",
+        ),
+        field(
+            "diameter",
+            Kind::Number,
+            Unit::Mm,
+            POSITIVE,
+            Given::Described("none (rates of the section only)"),
+            "the wheel's diameter `D`, for volume rates",
+        ),
+    ],
+};
+
+/// `[dresser]`: the dressing wheel.
+pub const DRESSER: Table = Table {
+    name: "dresser",
+    repeat: Repeat::Single,
+    required: true,
+    help: "the diamond dressing wheel",
+    fields: &[
+        field(
+            "width",
+            Kind::Number,
+            Unit::Mm,
+            POSITIVE,
+            Given::Required,
+            "the width `b`, at least `rL + rR`; the dresser must not cut into the profile \
+             elsewhere",
+        ),
+        field(
+            "corner_radius_left",
+            Kind::Number,
+            Unit::Mm,
+            CORNER_MIN,
+            Given::Required,
+            "`rL`, the corner dressing the left half, up to `R2`",
+        ),
+        field(
+            "corner_radius_right",
+            Kind::Number,
+            Unit::Mm,
+            CORNER_MIN,
+            Given::Required,
+            "`rR`, the corner dressing the right half, up to `R2`",
+        ),
+        field(
+            "yo",
+            Kind::Number,
+            Unit::Mm,
+            Some(Range::at_least(0.0)),
+            Given::Described("`b / 2`"),
+            "point A's distance from the dresser's left face, up to `b`",
+        ),
+    ],
+};
+
+/// `[process]`: allowance, step and feeds.
+pub const PROCESS: Table = Table {
+    name: "process",
+    repeat: Repeat::Single,
+    required: true,
+    help: "the allowance, the step and the feeds",
+    fields: &[
+        field(
+            "depth",
+            Kind::Number,
+            Unit::Mm,
+            POSITIVE,
+            Given::RequiredWhen(Condition::Absent {
+                field: "initial_contour",
+            }),
+            "the dressing allowance (the profile offset outward), below min(`R2`, the profile's \
+             height)",
+        ),
+        field(
+            "initial_contour",
+            Kind::File,
+            Unit::None,
+            None,
+            Given::None,
+            "a CSV of the wheel before dressing (columns `z,x`, mm; the older `x,y` too), \
+             relative to the job's folder (else the current folder); instead of `depth`",
+        ),
+        field(
+            "step",
+            Kind::Number,
+            Unit::Mm,
+            Some(Range::at_least(0.0001)),
+            Given::Required,
+            "the step `h`, up to min(`rL`, `rR`) / 2, not so small that the work explodes",
+        ),
+        field(
+            "feed_min",
+            Kind::Number,
+            Unit::MmPerMin,
+            Some(Range::at_least(0.1)),
+            Given::Required,
+            "the lowest feed",
+        ),
+        field(
+            "feed_max",
+            Kind::Number,
+            Unit::MmPerMin,
+            Some(Range::closed(0.1, 100_000.0)),
+            Given::Required,
+            "the highest feed, at least `feed_min`",
+        ),
+        field(
+            "target_mrr",
+            Kind::Number,
+            Unit::Mm2PerMin,
+            POSITIVE,
+            Given::Described("eq. 19: the largest the feed range allows"),
+            "the removal rate `T` to hold, of the section",
+        ),
+        field(
+            "feed_change_max",
+            Kind::Number,
+            Unit::MmPerMin,
+            POSITIVE,
+            Given::Described("(`feed_max` − `feed_min`) / 10"),
+            "the largest feed change `ΔF` between neighbouring points",
+        ),
+        field(
+            "name",
+            Kind::Text,
+            Unit::None,
+            None,
+            Given::Value(Value::Text("DRESS")),
+            "the program's name",
+        ),
+    ],
+};
+
+/// The dressing job: `[wheel]`, `[dresser]` and `[process]`.
+pub const DRESS_JOB: JobSchema = JobSchema {
+    name: "dressing",
+    help: "a dressing job: the grinding wheel's profile, the dressing wheel, the allowance, the \
+           step and the feeds",
+    tables: &[WHEEL, DRESSER, PROCESS],
+};
+
 fn line_col(text: &str, offset: usize) -> (usize, usize) {
     let before = &text[..offset.min(text.len())];
     let line = before.matches('\n').count() + 1;
@@ -237,18 +479,27 @@ feed_max = 300.0
             .unwrap_err()
             .to_string();
         assert!(
-            e.contains("unknown field `r3`") && e.starts_with("line 7"),
+            e.starts_with("wheel.r3 at 7:1: unknown field `r3`; allowed: ball_radius"),
             "{e}"
         );
         let e = DressJob::from_toml(&SEED.replace("step = 0.01\n", ""))
             .unwrap_err()
             .to_string();
-        assert!(e.contains("missing field `step`"), "{e}");
-        let job = DressJob::from_toml(&SEED.replace("depth = 0.05\n", "")).unwrap();
-        let e = job.spec(None).unwrap_err().to_string();
-        assert!(e.starts_with("process.depth"), "{e}");
-        let nan = DressJob::from_toml(&SEED.replace("r1 = 1.937", "r1 = nan")).unwrap();
-        assert!(nan.spec(None).is_ok());
+        assert!(
+            e.starts_with("process.step: missing") && e.contains(">= 0.0001 mm"),
+            "{e}"
+        );
+        let e = DressJob::from_toml(&SEED.replace("depth = 0.05\n", ""))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("process.depth: missing") && e.contains("unless initial_contour"),
+            "{e}"
+        );
+        let e = DressJob::from_toml(&SEED.replace("r1 = 1.937", "r1 = nan"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("wheel.r1 = nan at 5:6: out of range"), "{e}");
     }
 
     #[test]

@@ -78,7 +78,7 @@ pub use dressing::{Allowance, DressSpec, Dressing, STEP_MIN, dress, dress_with};
 pub use error::DressError;
 pub use feed::{FeedPlan, FeedSpec, plan_feed};
 pub use forming::{Forming, Step, offset_contour, simulate, simulate_with};
-pub use job::{ARC_ANGLE_DEG, DressJob, DresserJob, ProcessJob, WheelJob};
+pub use job::{ARC_ANGLE_DEG, DRESS_JOB, DressJob, DresserJob, ProcessJob, WheelJob};
 pub use path::{LEAD_IN, Pass, PathPoint, Stage, Stretch, dresser_path};
 pub use point::Point;
 pub use profile::{Contact, Element, Joints, Profile, WheelSpec};

@@ -89,6 +89,20 @@ impl Check {
     }
 }
 
+/// The checks' names, in the order of [`Check::ALL`] (the words of
+/// `[checks] allow`).
+pub const CHECK_NAMES: &[&str] = &[
+    "cyclicity",
+    "clearance",
+    "l_max",
+    "slack",
+    "reverse-rotation",
+    "limits",
+    "unreachable",
+    "timing",
+    "acceleration",
+];
+
 impl std::str::FromStr for Check {
     type Err = String;
 

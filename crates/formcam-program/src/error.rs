@@ -22,6 +22,12 @@ pub enum ProgramError {
         /// What is wrong.
         message: String,
     },
+    /// The job does not match its description ([`crate::WINDING_JOB`]): an
+    /// unknown table or field, a wrong type, a value out of range, a word
+    /// not in the list, a missing field; each names `table.field`, its
+    /// `line:column` and what is allowed.
+    #[error(transparent)]
+    Schema(formcam_schema::SchemaError),
     /// A table the job needs is missing (`[winding]`, `[eye]`, `[machine]`).
     #[error("{table}: missing table")]
     MissingTable {

@@ -1,6 +1,7 @@
 //! The winding job: the `[mandrel]`, `[winding]` or `[[layer]]`, `[eye]`,
 //! `[machine]`, `[motion]`, `[post]` and `[checks]` tables users write, read
-//! with errors that name the field.
+//! with errors that name the field. [`WINDING_JOB`] describes every table
+//! and field; the reader validates a job against it before reading it.
 
 use std::path::{Path, PathBuf};
 
@@ -8,7 +9,11 @@ use formcam_machine::IkMethod;
 use formcam_machine::Machine;
 use formcam_machine::shipped::{names, shipped};
 use formcam_nc::{Dialect, Template};
-use formcam_winding::job::{EyeJob, MandrelSpec, WindingSpec};
+use formcam_schema::{
+    Default as Given, EmptyList, Field, JobSchema, Kind, Range, Repeat, SchemaError, Table, Unit,
+    Value, validate,
+};
+use formcam_winding::job::{EYE, EyeJob, LAYER, MANDREL, MandrelSpec, WINDING, WindingSpec};
 use serde::{Deserialize, Serialize};
 
 use crate::ProgramError;
@@ -235,6 +240,18 @@ impl WindJob {
     /// Reads a job from its TOML text; files it names (profiles, eye curves,
     /// the machine, templates) are relative to `base_dir`.
     pub fn from_toml(text: &str, base_dir: &Path) -> Result<WindJob, ProgramError> {
+        validate(&WINDING_JOB, text).map_err(|e| match e {
+            SchemaError::Syntax {
+                line,
+                column,
+                message,
+            } => ProgramError::Syntax {
+                line,
+                column,
+                message,
+            },
+            other => ProgramError::Schema(other),
+        })?;
         let file: JobFile = toml::from_str(text).map_err(|e| {
             let (line, column) = e.span().map_or((0, 0), |s| line_col(text, s.start));
             ProgramError::Syntax {
@@ -382,4 +399,250 @@ fn line_col(text: &str, offset: usize) -> (usize, usize) {
     let line = before.matches('\n').count() + 1;
     let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
     (line, col)
+}
+
+/// The names `[post] dialect` takes (the dialects and their aliases).
+const DIALECTS: &[&str] = &[
+    "sinumerik-840d",
+    "iso",
+    "linuxcnc",
+    "marlin-xab",
+    "cldata",
+    "fanuc",
+    "sinumerik",
+    "840d",
+];
+
+/// The shipped machines' names, as `[machine] name` takes them.
+const MACHINES: &[&str] = &[
+    "placement-arm",
+    "winder-2axis",
+    "winder-4axis",
+    "winder-6axis",
+    "winder-xab",
+];
+
+const fn field(
+    name: &'static str,
+    kind: Kind,
+    unit: Unit,
+    range: Option<Range>,
+    default: Given,
+    help: &'static str,
+) -> Field {
+    Field {
+        name,
+        kind,
+        unit,
+        range,
+        default,
+        help,
+    }
+}
+
+const POSITIVE: Option<Range> = Some(Range::above(0.0));
+
+/// `[machine]`: the machine, shipped or from a file.
+pub const MACHINE: Table = Table {
+    name: "machine",
+    repeat: Repeat::Single,
+    required: false,
+    help: "the machine: exactly one of `name` and `file`; needed for `wind axes` and programs",
+    fields: &[
+        field(
+            "name",
+            Kind::Word(MACHINES),
+            Unit::None,
+            None,
+            Given::Described("exactly one of `name` and `file`"),
+            "a machine shipped with formcam (a job anywhere reaches it; see machines.md)",
+        ),
+        field(
+            "file",
+            Kind::File,
+            Unit::None,
+            None,
+            Given::Described("exactly one of `name` and `file`"),
+            "a machine file (TOML), relative to the job's folder",
+        ),
+        field(
+            "ik",
+            Kind::Word(&["auto", "solver", "closed-form"]),
+            Unit::None,
+            None,
+            Given::Value(Value::Text("auto")),
+            "the inverse kinematics: the closed form where the machine has one (`auto`),              Levenberg–Marquardt for every machine (`solver`), or the closed form only",
+        ),
+    ],
+};
+
+/// `[motion]`: tolerances and block times.
+pub const MOTION: Table = Table {
+    name: "motion",
+    repeat: Repeat::Single,
+    required: false,
+    help: "the blocks' tolerances and times",
+    fields: &[
+        field(
+            "tolerance_mm",
+            Kind::Number,
+            Unit::Mm,
+            POSITIVE,
+            Given::Value(Value::Number(0.05)),
+            "linear axes' tolerance of the blocks",
+        ),
+        field(
+            "tolerance_deg",
+            Kind::Number,
+            Unit::Deg,
+            POSITIVE,
+            Given::Value(Value::Number(0.05)),
+            "rotary axes' tolerance",
+        ),
+        field(
+            "position_tolerance_mm",
+            Kind::Number,
+            Unit::Mm,
+            POSITIVE,
+            Given::None,
+            "the payout point's tolerance through forward kinematics",
+        ),
+        field(
+            "tau_s",
+            Kind::Number,
+            Unit::S,
+            POSITIVE,
+            Given::Value(Value::Number(0.004)),
+            "the controller's least block time",
+        ),
+        field(
+            "times",
+            Kind::Word(&["global", "pairwise"]),
+            Unit::None,
+            None,
+            Given::Value(Value::Text("global")),
+            "the optimum under the velocity and jump limits (`global`) or eq. 18 (`pairwise`)",
+        ),
+        field(
+            "acceleration",
+            Kind::Boolean,
+            Unit::None,
+            None,
+            Given::Value(Value::Boolean(false)),
+            "also keep the axes' `a_max`",
+        ),
+    ],
+};
+
+/// `[post]`: the post-processor.
+pub const POST: Table = Table {
+    name: "post",
+    repeat: Repeat::Single,
+    required: false,
+    help: "the post-processor: a dialect or a user template",
+    fields: &[
+        field(
+            "dialect",
+            Kind::Name(DIALECTS),
+            Unit::None,
+            None,
+            Given::Value(Value::Text("sinumerik-840d")),
+            "the controller's language (`fanuc` is `iso`; `sinumerik` and `840d` are \
+             `sinumerik-840d`); see dialects.md",
+        ),
+        field(
+            "template",
+            Kind::File,
+            Unit::None,
+            None,
+            Given::None,
+            "a user post-processor (TOML), relative to the job's folder; instead of `dialect`",
+        ),
+    ],
+};
+
+/// `[checks]`: the checks whose failure a job accepts.
+pub const CHECKS: Table = Table {
+    name: "checks",
+    repeat: Repeat::Single,
+    required: false,
+    help: "checks whose failure the job accepts",
+    fields: &[field(
+        "allow",
+        Kind::Words(crate::checks::CHECK_NAMES),
+        Unit::None,
+        None,
+        Given::Value(Value::EmptyList(EmptyList)),
+        "names of checks whose failure the job accepts: the program is written anyway",
+    )],
+};
+
+/// The winding job: every table of [`WindJob`]'s file.
+pub const WINDING_JOB: JobSchema = JobSchema {
+    name: "winding",
+    help: "a winding job: the mandrel, one layer or several, the eye, the machine, the motion, \
+           the post and the checks accepted",
+    tables: &[MANDREL, WINDING, LAYER, EYE, MACHINE, MOTION, POST, CHECKS],
+};
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+
+    /// The keys a serde struct takes, from its message for an unknown one.
+    fn serde_keys<T: serde::de::DeserializeOwned + std::fmt::Debug>() -> Vec<String> {
+        let e = toml::from_str::<T>("zz_probe = 1").unwrap_err().to_string();
+        let list = e.split("expected").nth(1).unwrap_or_default();
+        list.split('`')
+            .skip(1)
+            .step_by(2)
+            .map(str::to_string)
+            .collect()
+    }
+
+    fn described(t: &Table) -> Vec<String> {
+        let mut v: Vec<String> = t.fields.iter().map(|f| f.name.to_string()).collect();
+        v.sort();
+        v
+    }
+
+    #[test]
+    fn every_key_the_reader_takes_is_described() {
+        let sorted = |mut v: Vec<String>| {
+            v.sort();
+            v
+        };
+        assert_eq!(sorted(serde_keys::<MachineTable>()), described(&MACHINE));
+        assert_eq!(sorted(serde_keys::<PostTable>()), described(&POST));
+        assert_eq!(sorted(serde_keys::<MotionJob>()), described(&MOTION));
+        assert_eq!(
+            sorted(serde_keys::<crate::checks::ChecksJob>()),
+            described(&CHECKS)
+        );
+        assert_eq!(sorted(serde_keys::<MandrelSpec>()), described(&MANDREL));
+        assert_eq!(sorted(serde_keys::<EyeJob>()), described(&EYE));
+        assert_eq!(sorted(serde_keys::<WindingSpec>()), described(&LAYER));
+        // `[winding]` is one layer: a skip layer's turn has no place there.
+        let mut winding = described(&WINDING);
+        winding.push("mandrel_rotation_deg".into());
+        assert_eq!(sorted(winding), described(&LAYER));
+        let mut tables: Vec<String> = WINDING_JOB.tables.iter().map(|t| t.name.into()).collect();
+        tables.sort();
+        assert_eq!(sorted(serde_keys::<JobFile>()), tables);
+    }
+
+    #[test]
+    fn the_described_words_are_the_readers() {
+        let names: Vec<&str> = names().collect();
+        assert_eq!(MACHINES, names.as_slice());
+        for d in DIALECTS {
+            assert!(Dialect::from_name(d).is_ok(), "{d}");
+        }
+        for n in Dialect::NAMES {
+            assert!(DIALECTS.contains(&n), "{n}");
+        }
+        let checks: Vec<&str> = crate::checks::Check::ALL.iter().map(|c| c.name()).collect();
+        assert_eq!(crate::checks::CHECK_NAMES, checks.as_slice());
+    }
 }

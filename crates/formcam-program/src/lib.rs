@@ -18,7 +18,9 @@ mod windfile;
 pub use blocks::{Assembled, LayerBlocks, TimedBlock, axis_limits, nc};
 pub use checks::{Check, ChecksJob, Violated};
 pub use error::{ProgramError, WindFileError, in_layer};
-pub use job::{Ik, JobMachine, Layers, MachineSource, MotionJob, Post, Times, WindImport, WindJob};
+pub use job::{
+    Ik, JobMachine, Layers, MachineSource, MotionJob, Post, Times, WINDING_JOB, WindImport, WindJob,
+};
 pub use plan::{
     LayerBody, Stage, Wound, WoundLayer, WoundProgram, plan_program, plan_until, plan_until_with,
 };

@@ -23,7 +23,7 @@
 
 use formcam_machine::IkMethod;
 use formcam_machine::shipped::shipped;
-use formcam_winding::job::{EyeJob, LayerKind, MandrelSpec, WindingSpec};
+use formcam_winding::job::{EyeJob, LayerKind, MandrelKind, MandrelSpec, WindingSpec};
 use serde_json::{Map, Value};
 
 use crate::ProgramError;
@@ -526,13 +526,13 @@ fn parse(text: &str, eye_clearance: f64) -> Result<Imported, WindFileError> {
     let r_max = diameter / 2.0;
     let mandrel = match cone {
         None => MandrelSpec {
-            kind: Some("cylinder".into()),
+            kind: Some(MandrelKind::Cylinder),
             radius: Some(r_max),
             length: Some(wind_length),
             ..MandrelSpec::default()
         },
         Some(e) => MandrelSpec {
-            kind: Some("cone".into()),
+            kind: Some(MandrelKind::Cone),
             radius_start: Some(r_max),
             radius_end: Some(e / 2.0),
             length: Some(wind_length),

@@ -2,12 +2,16 @@
 //! their translation into a mandrel and a [`LayerSpec`].
 //!
 //! Fields are optional in the types so that a missing one is reported by its
-//! dotted name (`mandrel.radius`) with what it should be.
+//! dotted name (`mandrel.radius`) with what it should be. The tables'
+//! descriptions ([`MANDREL`], [`WINDING`], [`LAYER`], [`EYE`]) give every
+//! field's type, unit, range, default and help; the job's reader validates
+//! against them first, and `docs/winding.md` lists them.
 
 use std::fmt;
 use std::str::FromStr;
 
 use formcam_geom::{Cone, Cylinder, DomeShape, GeomError, Jet, Meridian, Tabulated, Vessel};
+use formcam_schema::{Condition, Default as Given, Field, Kind, Range, Repeat, Table, Unit, Value};
 use serde::{Deserialize, Serialize};
 
 use crate::{Ends, LayerSpec, MuSegment, Slippage, TubeTurn, WindingError};
@@ -17,7 +21,7 @@ use crate::{Ends, LayerSpec, MuSegment, Slippage, TubeTurn, WindingError};
 #[serde(deny_unknown_fields)]
 pub struct MandrelSpec {
     /// `cylinder | cone | vessel | profile`.
-    pub kind: Option<String>,
+    pub kind: Option<MandrelKind>,
     /// Cylinder radius, mm.
     pub radius: Option<f64>,
     /// Tube length, mm.
@@ -29,9 +33,9 @@ pub struct MandrelSpec {
     /// Cylinder length of a vessel, mm.
     pub cylinder_length: Option<f64>,
     /// Dome at the start (and at the end unless `dome_end` is given).
-    pub dome: Option<String>,
+    pub dome: Option<DomeKind>,
     /// Dome at the end.
-    pub dome_end: Option<String>,
+    pub dome_end: Option<DomeKind>,
     /// Polar opening radius at the start (and end unless `polar_opening_end`), mm.
     pub polar_opening: Option<f64>,
     /// Polar opening radius at the end, mm.
@@ -55,6 +59,93 @@ pub struct MandrelSpec {
     /// Profile: a radial offset added to every `r` of the table, mm (multi-layer
     /// jobs grow it by the thickness of the layers laid).
     pub offset_mm: Option<f64>,
+}
+
+/// `mandrel.kind`: the mandrel's shape.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MandrelKind {
+    /// A cylinder tube.
+    Cylinder,
+    /// A conical tube.
+    Cone,
+    /// A vessel: a cylinder between two domes.
+    Vessel,
+    /// A tabulated meridian.
+    Profile,
+}
+
+impl MandrelKind {
+    /// Every kind, in the order of [`MandrelKind::NAMES`].
+    pub const ALL: [MandrelKind; 4] = [
+        MandrelKind::Cylinder,
+        MandrelKind::Cone,
+        MandrelKind::Vessel,
+        MandrelKind::Profile,
+    ];
+
+    /// The names users write.
+    pub const NAMES: &'static [&'static str] = &["cylinder", "cone", "vessel", "profile"];
+
+    /// The name users write.
+    pub fn name(self) -> &'static str {
+        match self {
+            MandrelKind::Cylinder => "cylinder",
+            MandrelKind::Cone => "cone",
+            MandrelKind::Vessel => "vessel",
+            MandrelKind::Profile => "profile",
+        }
+    }
+}
+
+impl fmt::Display for MandrelKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.pad(self.name())
+    }
+}
+
+/// `mandrel.dome` and `mandrel.dome_end`: a vessel's dome shape.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum DomeKind {
+    /// A hemisphere.
+    Hemisphere,
+    /// An ellipsoid (`axis_ratio`).
+    Ellipsoid,
+    /// A torispherical head (`crown_radius`, `knuckle_radius`).
+    Torispherical,
+    /// The geodesic-isotensoid dome.
+    Isotensoid,
+}
+
+impl DomeKind {
+    /// Every dome, in the order of [`DomeKind::NAMES`].
+    pub const ALL: [DomeKind; 4] = [
+        DomeKind::Hemisphere,
+        DomeKind::Ellipsoid,
+        DomeKind::Torispherical,
+        DomeKind::Isotensoid,
+    ];
+
+    /// The names users write.
+    pub const NAMES: &'static [&'static str] =
+        &["hemisphere", "ellipsoid", "torispherical", "isotensoid"];
+
+    /// The name users write.
+    pub fn name(self) -> &'static str {
+        match self {
+            DomeKind::Hemisphere => "hemisphere",
+            DomeKind::Ellipsoid => "ellipsoid",
+            DomeKind::Torispherical => "torispherical",
+            DomeKind::Isotensoid => "isotensoid",
+        }
+    }
+}
+
+impl fmt::Display for DomeKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.pad(self.name())
+    }
 }
 
 /// `mu` as users write it: a number, `"auto"` or `"minimax"`.
@@ -253,22 +344,21 @@ fn geom(prefix: &str, e: GeomError) -> WindingError {
 }
 
 fn dome_shape(
-    name: &str,
-    field: &str,
+    dome: DomeKind,
     axis_ratio: (Option<f64>, &str),
     crown: (Option<f64>, &str),
     knuckle: (Option<f64>, &str),
 ) -> Result<DomeShape, WindingError> {
-    match name {
-        "hemisphere" => Ok(DomeShape::Hemisphere),
-        "ellipsoid" => Ok(DomeShape::Ellipsoid {
+    match dome {
+        DomeKind::Hemisphere => Ok(DomeShape::Hemisphere),
+        DomeKind::Ellipsoid => Ok(DomeShape::Ellipsoid {
             axis_ratio: need(
                 axis_ratio.1,
                 axis_ratio.0,
                 "dome depth / radius, > 0 (0.5 for a 2:1 head)",
             )?,
         }),
-        "torispherical" => Ok(DomeShape::Torispherical {
+        DomeKind::Torispherical => Ok(DomeShape::Torispherical {
             crown_radius: need(crown.1, crown.0, "crown radius in mm, >= radius")?,
             knuckle_radius: need(
                 knuckle.1,
@@ -276,13 +366,7 @@ fn dome_shape(
                 "knuckle radius in mm, 0 < knuckle < radius",
             )?,
         }),
-        "isotensoid" => Ok(DomeShape::Isotensoid),
-        other => Err(WindingError::field(
-            field,
-            format!(
-                "unknown dome \"{other}\"; allowed: hemisphere, ellipsoid, torispherical, isotensoid"
-            ),
-        )),
+        DomeKind::Isotensoid => Ok(DomeShape::Isotensoid),
     }
 }
 
@@ -296,7 +380,7 @@ impl MandrelSpec {
             return Ok(self.clone());
         }
         let add = |v: Option<f64>| v.map(|v| v + t);
-        if self.kind.as_deref() == Some("profile") {
+        if self.kind == Some(MandrelKind::Profile) {
             return Ok(MandrelSpec {
                 offset_mm: Some(self.offset_mm.unwrap_or(0.0) + t),
                 ..self.clone()
@@ -319,7 +403,7 @@ impl MandrelSpec {
         &self,
         read: impl Fn(&str) -> Result<String, String>,
     ) -> Result<Mandrel, WindingError> {
-        let kind = self.kind.as_deref().ok_or_else(|| {
+        let kind = self.kind.ok_or_else(|| {
             WindingError::field(
                 "mandrel.kind",
                 "missing: one of cylinder, cone, vessel, profile",
@@ -327,14 +411,14 @@ impl MandrelSpec {
         })?;
         let p = "mandrel";
         match kind {
-            "cylinder" => Ok(Mandrel::Cylinder(
+            MandrelKind::Cylinder => Ok(Mandrel::Cylinder(
                 Cylinder::new(
                     need("mandrel.radius", self.radius, "radius in mm, > 0")?,
                     need("mandrel.length", self.length, "length in mm, > 0")?,
                 )
                 .map_err(|e| geom(p, e))?,
             )),
-            "cone" => Ok(Mandrel::Cone(
+            MandrelKind::Cone => Ok(Mandrel::Cone(
                 Cone::new(
                     need(
                         "mandrel.radius_start",
@@ -350,20 +434,18 @@ impl MandrelSpec {
                 )
                 .map_err(|e| geom(p, e))?,
             )),
-            "vessel" => {
+            MandrelKind::Vessel => {
                 let radius = need("mandrel.radius", self.radius, "cylinder radius in mm, > 0")?;
                 let length = need("mandrel.cylinder_length", self.cylinder_length, "mm, >= 0")?;
-                let dome = self.dome.as_deref().unwrap_or("hemisphere");
+                let dome = self.dome.unwrap_or(DomeKind::Hemisphere);
                 let start = dome_shape(
                     dome,
-                    "mandrel.dome",
                     (self.axis_ratio, "mandrel.axis_ratio"),
                     (self.crown_radius, "mandrel.crown_radius"),
                     (self.knuckle_radius, "mandrel.knuckle_radius"),
                 )?;
                 let end = dome_shape(
-                    self.dome_end.as_deref().unwrap_or(dome),
-                    "mandrel.dome_end",
+                    self.dome_end.unwrap_or(dome),
                     (
                         self.axis_ratio_end.or(self.axis_ratio),
                         "mandrel.axis_ratio_end",
@@ -388,7 +470,7 @@ impl MandrelSpec {
                         .map_err(|e| geom(p, e))?,
                 ))
             }
-            "profile" => {
+            MandrelKind::Profile => {
                 let file = self.file.as_deref().ok_or_else(|| {
                     WindingError::field("mandrel.file", "missing: a CSV file of z,r points (mm)")
                 })?;
@@ -406,10 +488,6 @@ impl MandrelSpec {
                     .map_err(|e| WindingError::field("mandrel.file", format!("{file}: {e}")))?;
                 Ok(Mandrel::Profile(t))
             }
-            other => Err(WindingError::field(
-                "mandrel.kind",
-                format!("unknown kind \"{other}\"; allowed: cylinder, cone, vessel, profile"),
-            )),
         }
     }
 }
@@ -577,16 +655,7 @@ impl WindingSpec {
             skip_index: self.skip_index,
             dwell_min: self.dwell_min_deg.unwrap_or(default_dwell).to_radians(),
             mu_limit: self.mu_limit.unwrap_or(defaults.mu_limit),
-            samples: match self.samples {
-                Some(n) if !(2..=10_000_000).contains(&n) => {
-                    return Err(WindingError::field(
-                        "winding.samples",
-                        "must be in [2, 10000000]",
-                    ));
-                }
-                Some(n) => n,
-                None => defaults.samples,
-            },
+            samples: self.samples.unwrap_or(defaults.samples),
             minimax_nodes: defaults.minimax_nodes,
             turnaround,
         })
@@ -709,5 +778,510 @@ impl EyeJob {
             samples: self.samples.unwrap_or(defaults.samples),
             nodes: self.nodes.unwrap_or(defaults.nodes),
         })
+    }
+}
+
+const fn field(
+    name: &'static str,
+    kind: Kind,
+    unit: Unit,
+    range: Option<Range>,
+    default: Given,
+    help: &'static str,
+) -> Field {
+    Field {
+        name,
+        kind,
+        unit,
+        range,
+        default,
+        help,
+    }
+}
+
+const fn when(field: &'static str, words: &'static [&'static str]) -> Given {
+    Given::RequiredWhen(Condition::Is { field, words })
+}
+
+const POSITIVE: Option<Range> = Some(Range::above(0.0));
+const NOT_NEGATIVE: Option<Range> = Some(Range::at_least(0.0));
+
+/// The fields of `[mandrel]`.
+pub const MANDREL_FIELDS: &[Field] = &[
+    field(
+        "kind",
+        Kind::Word(MandrelKind::NAMES),
+        Unit::None,
+        None,
+        Given::Required,
+        "the mandrel's shape",
+    ),
+    field(
+        "radius",
+        Kind::Number,
+        Unit::Mm,
+        POSITIVE,
+        when("kind", &["cylinder", "vessel"]),
+        "a cylinder's radius; a vessel's cylinder radius",
+    ),
+    field(
+        "length",
+        Kind::Number,
+        Unit::Mm,
+        POSITIVE,
+        when("kind", &["cylinder", "cone"]),
+        "a tube's length",
+    ),
+    field(
+        "radius_start",
+        Kind::Number,
+        Unit::Mm,
+        POSITIVE,
+        when("kind", &["cone"]),
+        "a cone's radius at `z = 0`",
+    ),
+    field(
+        "radius_end",
+        Kind::Number,
+        Unit::Mm,
+        POSITIVE,
+        when("kind", &["cone"]),
+        "a cone's radius at `z = length`",
+    ),
+    field(
+        "cylinder_length",
+        Kind::Number,
+        Unit::Mm,
+        NOT_NEGATIVE,
+        when("kind", &["vessel"]),
+        "a vessel's cylinder length",
+    ),
+    field(
+        "dome",
+        Kind::Word(DomeKind::NAMES),
+        Unit::None,
+        None,
+        Given::Value(Value::Text("hemisphere")),
+        "a vessel's dome at the start (and at the end unless `dome_end`); `isotensoid` is the \
+         geodesic-isotensoid",
+    ),
+    field(
+        "dome_end",
+        Kind::Word(DomeKind::NAMES),
+        Unit::None,
+        None,
+        Given::Described("`dome`"),
+        "a vessel's dome at the end",
+    ),
+    field(
+        "polar_opening",
+        Kind::Number,
+        Unit::Mm,
+        POSITIVE,
+        when("kind", &["vessel"]),
+        "the **radius** of the polar opening at the start (not its diameter), below `radius`; \
+         also at the end unless `polar_opening_end`",
+    ),
+    field(
+        "polar_opening_end",
+        Kind::Number,
+        Unit::Mm,
+        POSITIVE,
+        Given::Described("`polar_opening`"),
+        "the radius of the polar opening at the end",
+    ),
+    field(
+        "axis_ratio",
+        Kind::Number,
+        Unit::None,
+        POSITIVE,
+        when("dome", &["ellipsoid"]),
+        "an ellipsoidal dome's depth / radius (0.5 for a 2:1 head)",
+    ),
+    field(
+        "axis_ratio_end",
+        Kind::Number,
+        Unit::None,
+        POSITIVE,
+        Given::Described("`axis_ratio`"),
+        "the same for the end dome",
+    ),
+    field(
+        "crown_radius",
+        Kind::Number,
+        Unit::Mm,
+        POSITIVE,
+        when("dome", &["torispherical"]),
+        "a torispherical dome's crown radius, >= `radius`",
+    ),
+    field(
+        "knuckle_radius",
+        Kind::Number,
+        Unit::Mm,
+        POSITIVE,
+        when("dome", &["torispherical"]),
+        "a torispherical dome's knuckle radius, below `radius`",
+    ),
+    field(
+        "crown_radius_end",
+        Kind::Number,
+        Unit::Mm,
+        POSITIVE,
+        Given::Described("`crown_radius`"),
+        "the same for the end dome",
+    ),
+    field(
+        "knuckle_radius_end",
+        Kind::Number,
+        Unit::Mm,
+        POSITIVE,
+        Given::Described("`knuckle_radius`"),
+        "the same for the end dome",
+    ),
+    field(
+        "file",
+        Kind::File,
+        Unit::None,
+        None,
+        when("kind", &["profile"]),
+        "a profile's CSV of `z,r` points (mm), relative to the job's folder; the meridian runs \
+         between the first and the last point, which are the polar openings",
+    ),
+    field(
+        "smoothing",
+        Kind::Number,
+        Unit::None,
+        NOT_NEGATIVE,
+        Given::Value(Value::Number(0.0)),
+        "a profile's spline smoothing (0: interpolate)",
+    ),
+    field(
+        "offset_mm",
+        Kind::Number,
+        Unit::Mm,
+        None,
+        Given::Value(Value::Number(0.0)),
+        "added to every `r` of a profile",
+    ),
+];
+
+const MU_SEGMENT_FIELDS: &[Field] = &[
+    field(
+        "z_from",
+        Kind::Number,
+        Unit::Mm,
+        None,
+        Given::Required,
+        "the interval's start",
+    ),
+    field(
+        "z_to",
+        Kind::Number,
+        Unit::Mm,
+        None,
+        Given::Required,
+        "the interval's end",
+    ),
+    field(
+        "mu",
+        Kind::Number,
+        Unit::None,
+        None,
+        Given::Required,
+        "the slippage on it",
+    ),
+];
+
+const MU: Field = field(
+    "mu",
+    Kind::NumberOrWord(&["auto", "minimax", "geodesic"]),
+    Unit::None,
+    None,
+    Given::Value(Value::Number(0.0)),
+    "the slippage: a number (constant, `|mu| <= mu_limit`; 0 = geodesic), `auto` (shooting, \
+     vessels and profiles), `minimax` (vessels and profiles) or `geodesic`",
+);
+const MU_SEGMENTS: Field = field(
+    "mu_segments",
+    Kind::Tables(MU_SEGMENT_FIELDS),
+    Unit::None,
+    None,
+    Given::None,
+    "instead of `mu`: piecewise-constant slippage on `z` intervals in order, not overlapping, \
+     within the mandrel",
+);
+const NOT_SKIP: Given = Given::RequiredWhen(Condition::Not {
+    field: "kind",
+    words: &["skip"],
+});
+const BAND_WIDTH: Field = field(
+    "band_width",
+    Kind::Number,
+    Unit::Mm,
+    POSITIVE,
+    NOT_SKIP,
+    "the band's width",
+);
+const BAND_THICKNESS: Field = field(
+    "band_thickness",
+    Kind::Number,
+    Unit::Mm,
+    POSITIVE,
+    NOT_SKIP,
+    "the band's thickness",
+);
+const OVERLAP: Field = field(
+    "overlap",
+    Kind::Number,
+    Unit::None,
+    Some(Range::closed_open(0.0, 1.0)),
+    Given::Value(Value::Number(0.0)),
+    "overlap of neighbouring bands, a fraction of the band width",
+);
+const WINDING_ANGLE: Field = field(
+    "winding_angle_deg",
+    Kind::Number,
+    Unit::Deg,
+    Some(Range::open(0.0, 90.0)),
+    Given::Described("required for helical layers on tubes"),
+    "tubes only: the winding angle at `z = 0`; an error on a vessel or a profile and for hoop \
+     layers (their angle follows from the band width)",
+);
+const TURNAROUND: Field = field(
+    "turnaround",
+    Kind::Word(&["extension", "friction"]),
+    Unit::None,
+    None,
+    Given::Described("`extension` (tubes only)"),
+    "tubes only: `extension` (the band turns beyond the tube's ends) or `friction` (on the tube, \
+     held by `mu` > 0)",
+);
+const PATTERN_NUMBER: Field = field(
+    "pattern_number",
+    Kind::Integer,
+    Unit::None,
+    Some(Range::closed(1.0, u32::MAX as f64)),
+    Given::Described("chosen"),
+    "the pattern number",
+);
+const SKIP_INDEX: Field = field(
+    "skip_index",
+    Kind::Integer,
+    Unit::None,
+    Some(Range::closed(0.0, u32::MAX as f64)),
+    Given::Described("chosen"),
+    "the skip index",
+);
+const DWELL_MIN: Field = field(
+    "dwell_min_deg",
+    Kind::Number,
+    Unit::Deg,
+    NOT_NEGATIVE,
+    Given::Described("180 for tubes turned on an extension, else 0"),
+    "the least dwell per turn-around",
+);
+const MU_LIMIT: Field = field(
+    "mu_limit",
+    Kind::Number,
+    Unit::None,
+    POSITIVE,
+    Given::Value(Value::Number(0.6)),
+    "the largest slippage the band holds; bounds `auto` and `minimax`",
+);
+const SAMPLES: Field = field(
+    "samples",
+    Kind::Integer,
+    Unit::None,
+    Some(Range::closed(2.0, 10_000_000.0)),
+    Given::Value(Value::Integer(2001)),
+    "points of `path.csv` per pass",
+);
+const ONE_WAY: Field = field(
+    "one_way",
+    Kind::Boolean,
+    Unit::None,
+    None,
+    Given::Described("false (out and back); hoop layers only"),
+    "hoop layers: one pass only, ending at the far end (a terminal hoop)",
+);
+
+/// The fields of `[winding]` (a single-layer job).
+pub const WINDING_FIELDS: &[Field] = &[
+    MU,
+    MU_SEGMENTS,
+    BAND_WIDTH,
+    BAND_THICKNESS,
+    OVERLAP,
+    WINDING_ANGLE,
+    TURNAROUND,
+    PATTERN_NUMBER,
+    SKIP_INDEX,
+    DWELL_MIN,
+    MU_LIMIT,
+    SAMPLES,
+    field(
+        "kind",
+        Kind::Word(&["helical", "hoop"]),
+        Unit::None,
+        None,
+        Given::Value(Value::Text("helical")),
+        "`helical` (or polar) circuits, or `hoop` (tubes: the band advances one width per turn)",
+    ),
+    ONE_WAY,
+];
+
+/// The fields of a `[[layer]]` (multi-layer jobs): those of `[winding]`
+/// and the layer's kind.
+pub const LAYER_FIELDS: &[Field] = &[
+    field(
+        "kind",
+        Kind::Word(&["helical", "hoop", "skip"]),
+        Unit::None,
+        None,
+        Given::Value(Value::Text("helical")),
+        "`helical` (or polar) circuits, `hoop` (the band advances one width per turn; tubes and \
+         a vessel's cylinder) or `skip` (the mandrel turns alone)",
+    ),
+    MU,
+    MU_SEGMENTS,
+    BAND_WIDTH,
+    BAND_THICKNESS,
+    OVERLAP,
+    WINDING_ANGLE,
+    TURNAROUND,
+    PATTERN_NUMBER,
+    SKIP_INDEX,
+    DWELL_MIN,
+    MU_LIMIT,
+    SAMPLES,
+    ONE_WAY,
+    field(
+        "mandrel_rotation_deg",
+        Kind::Number,
+        Unit::Deg,
+        None,
+        when("kind", &["skip"]),
+        "skip layers: how far the mandrel turns alone",
+    ),
+];
+
+/// The fields of `[eye]`.
+pub const EYE_FIELDS: &[Field] = &[
+    field(
+        "mode",
+        Kind::Word(&["pull-speed", "axis-parallel", "equidistant", "curve"]),
+        Unit::None,
+        None,
+        Given::Value(Value::Text("pull-speed")),
+        "the eye's trajectory: the pull-speed optimum, a line parallel to the axis, the \
+         equidistant at `clearance`, or a user curve",
+    ),
+    field(
+        "radius",
+        Kind::Number,
+        Unit::Mm,
+        POSITIVE,
+        when("mode", &["axis-parallel"]),
+        "axis-parallel: the radius of the eye's line, outside the mandrel (pull-speed: compared \
+         with it)",
+    ),
+    field(
+        "clearance",
+        Kind::Number,
+        Unit::Mm,
+        POSITIVE,
+        Given::Value(Value::Number(20.0)),
+        "the least clearance round the mandrel for every mode, and the equidistant's distance",
+    ),
+    field(
+        "l_max",
+        Kind::Number,
+        Unit::Mm,
+        POSITIVE,
+        Given::Required,
+        "the largest free length",
+    ),
+    field(
+        "bath_moves_with_eye",
+        Kind::Boolean,
+        Unit::None,
+        None,
+        Given::Value(Value::Boolean(true)),
+        "`true`: `k = 0` in eq. 12; `false`: a fixed bath, `k = 1`",
+    ),
+    field(
+        "curve",
+        Kind::File,
+        Unit::None,
+        None,
+        when("mode", &["curve"]),
+        "curve mode: CSV of `Z,R` points (mm), `Z` increasing, `R > 0`, relative to the job's \
+         folder; covering the winding zone, outside the mandrel",
+    ),
+    field(
+        "samples",
+        Kind::Integer,
+        Unit::None,
+        Some(Range::closed(101.0, 10_000_000.0)),
+        Given::Value(Value::Integer(2001)),
+        "points of a geometric trajectory",
+    ),
+    field(
+        "nodes",
+        Kind::Integer,
+        Unit::None,
+        Some(Range::closed(100.0, 200_000.0)),
+        Given::Value(Value::Integer(2000)),
+        "intervals of the optimised `l(x)` (pull-speed)",
+    ),
+];
+
+/// `[mandrel]`: the mandrel before any layer.
+pub const MANDREL: Table = Table {
+    name: "mandrel",
+    repeat: Repeat::Single,
+    required: true,
+    help: "the mandrel before any layer",
+    fields: MANDREL_FIELDS,
+};
+
+/// `[winding]`: the one layer of a single-layer job.
+pub const WINDING: Table = Table {
+    name: "winding",
+    repeat: Repeat::Single,
+    required: false,
+    help: "the one layer of a single-layer job (instead of `[[layer]]`)",
+    fields: WINDING_FIELDS,
+};
+
+/// `[[layer]]`: the layers of a multi-layer job, in winding order.
+pub const LAYER: Table = Table {
+    name: "layer",
+    repeat: Repeat::Array,
+    required: false,
+    help: "the layers of a multi-layer job, in winding order (instead of `[winding]`)",
+    fields: LAYER_FIELDS,
+};
+
+/// `[eye]`: the payout eye.
+pub const EYE: Table = Table {
+    name: "eye",
+    repeat: Repeat::Single,
+    required: false,
+    help: "the payout eye's trajectory",
+    fields: EYE_FIELDS,
+};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_described_words_are_the_enums_names() {
+        assert_eq!(MandrelKind::ALL.map(MandrelKind::name), MandrelKind::NAMES);
+        assert_eq!(DomeKind::ALL.map(DomeKind::name), DomeKind::NAMES);
+        let layer = LAYER.field("kind").map(|f| f.kind.words());
+        let names = [LayerKind::Helical, LayerKind::Hoop, LayerKind::Skip].map(LayerKind::name);
+        assert_eq!(layer, Some(&names[..]));
     }
 }

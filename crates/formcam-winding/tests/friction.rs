@@ -8,7 +8,7 @@ mod common;
 use common::{Flare, Parabola};
 
 use formcam_geom::{Cone, Cylinder, Jet, Meridian};
-use formcam_winding::job::{LayerKind, Mandrel, MandrelSpec, MuField, WindingSpec};
+use formcam_winding::job::{LayerKind, Mandrel, MandrelKind, MandrelSpec, MuField, WindingSpec};
 use formcam_winding::{
     Ends, LayerSpec, Method, PassEnd, Slippage, TubeTurn, friction_turns, minimax, plan_layer,
 };
@@ -365,7 +365,7 @@ fn friction_zones_longer_than_half_the_tube_name_the_mu_that_fits() {
 fn the_job_turns_tubes_by_friction() {
     let none = |_: &str| -> Result<String, String> { Err("no files".into()) };
     let cyl = MandrelSpec {
-        kind: Some("cylinder".into()),
+        kind: Some(MandrelKind::Cylinder),
         radius: Some(50.0),
         length: Some(400.0),
         ..MandrelSpec::default()
@@ -428,7 +428,7 @@ fn the_job_turns_tubes_by_friction() {
         assert!(e.starts_with(field), "{e}");
     }
     let vessel: Mandrel = MandrelSpec {
-        kind: Some("vessel".into()),
+        kind: Some(MandrelKind::Vessel),
         radius: Some(100.0),
         cylinder_length: Some(300.0),
         polar_opening: Some(30.0),

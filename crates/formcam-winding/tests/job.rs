@@ -3,13 +3,13 @@
 #![allow(clippy::unwrap_used)]
 
 use formcam_geom::Meridian;
-use formcam_winding::job::{LayerKind, MandrelSpec, WindingSpec};
+use formcam_winding::job::{DomeKind, LayerKind, MandrelKind, MandrelSpec, WindingSpec};
 
 #[test]
 fn grown_mandrels_are_wider_by_the_thickness() {
     let none = |_: &str| -> Result<String, String> { Err("no files".into()) };
     let cyl = MandrelSpec {
-        kind: Some("cylinder".into()),
+        kind: Some(MandrelKind::Cylinder),
         radius: Some(50.0),
         length: Some(100.0),
         ..MandrelSpec::default()
@@ -17,10 +17,10 @@ fn grown_mandrels_are_wider_by_the_thickness() {
     let g = cyl.grown(1.5).unwrap().build(none).unwrap();
     assert!((g.r(10.0) - 51.5).abs() < 1e-12);
     let vessel = MandrelSpec {
-        kind: Some("vessel".into()),
+        kind: Some(MandrelKind::Vessel),
         radius: Some(100.0),
         cylinder_length: Some(300.0),
-        dome: Some("hemisphere".into()),
+        dome: Some(DomeKind::Hemisphere),
         polar_opening: Some(30.0),
         ..MandrelSpec::default()
     };
@@ -35,7 +35,7 @@ fn grown_mandrels_are_wider_by_the_thickness() {
     let table = "z,r\n0,40\n50,45\n100,52\n150,60\n200,60\n";
     let read = |_: &str| -> Result<String, String> { Ok(table.into()) };
     let profile = MandrelSpec {
-        kind: Some("profile".into()),
+        kind: Some(MandrelKind::Profile),
         file: Some("p.csv".into()),
         ..MandrelSpec::default()
     };
@@ -71,7 +71,7 @@ fn layer_kinds_are_read_by_name() {
     }
     let none = |_: &str| -> Result<String, String> { Err("no files".into()) };
     let cyl = MandrelSpec {
-        kind: Some("cylinder".into()),
+        kind: Some(MandrelKind::Cylinder),
         radius: Some(50.0),
         length: Some(100.0),
         ..MandrelSpec::default()

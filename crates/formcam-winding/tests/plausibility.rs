@@ -2,7 +2,7 @@
 
 #![allow(clippy::unwrap_used)]
 
-use formcam_winding::job::{MandrelSpec, WindingSpec};
+use formcam_winding::job::{DomeKind, MandrelKind, MandrelSpec, WindingSpec};
 
 fn none(_: &str) -> Result<String, String> {
     Err("no files".into())
@@ -10,10 +10,10 @@ fn none(_: &str) -> Result<String, String> {
 
 fn vessel(radius: f64, opening: f64) -> MandrelSpec {
     MandrelSpec {
-        kind: Some("vessel".into()),
+        kind: Some(MandrelKind::Vessel),
         radius: Some(radius),
         cylinder_length: Some(300.0),
-        dome: Some("hemisphere".into()),
+        dome: Some(DomeKind::Hemisphere),
         polar_opening: Some(opening),
         ..MandrelSpec::default()
     }
@@ -49,7 +49,7 @@ fn implausible_radii_and_bands_warn() {
     assert_eq!(w.len(), 1);
     assert!(w[0].starts_with("mandrel.radius") && w[0].contains("metres?"));
     let cone = MandrelSpec {
-        kind: Some("cone".into()),
+        kind: Some(MandrelKind::Cone),
         radius_start: Some(0.06),
         radius_end: Some(0.04),
         length: Some(0.3),
@@ -65,7 +65,7 @@ fn implausible_radii_and_bands_warn() {
     assert!(w[0].starts_with("winding.band_width"), "{w:?}");
     // Tubes have no openings.
     let tube = MandrelSpec {
-        kind: Some("cylinder".into()),
+        kind: Some(MandrelKind::Cylinder),
         radius: Some(50.0),
         length: Some(100.0),
         ..MandrelSpec::default()

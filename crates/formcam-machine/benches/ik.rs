@@ -1,5 +1,6 @@
-//! Inverse kinematics of a 1e5-point circuit on the 4-axis winder (closed form)
-//! and the 6-axis winder (Levenberg–Marquardt).
+//! The per-point work of a 1e5-point circuit: the targets, the inverse
+//! kinematics on the 4-axis winder (closed form) and the 6-axis winder
+//! (Levenberg–Marquardt), the band past the band path's key points.
 
 #![allow(clippy::expect_used, missing_docs)]
 
@@ -9,7 +10,7 @@ use std::path::PathBuf;
 use criterion::{Criterion, criterion_group, criterion_main};
 use formcam_geom::{DomeShape, Vessel};
 use formcam_machine::{IkMethod, solve};
-use formcam_machine::{Machine, winder_targets};
+use formcam_machine::{Machine, band_passed, winder_targets};
 use formcam_winding::eye::{EyeMode, EyeSpec, eye_trajectory};
 use formcam_winding::{Ends, LayerSpec, Slippage, plan_layer};
 
@@ -46,6 +47,9 @@ fn benches(c: &mut Criterion) {
     };
     let t = eye_trajectory(&v, &layer, &eye).expect("eye");
     let targets = winder_targets(&v, &t);
+    c.bench_function("targets, 1e5-point circuit", |b| {
+        b.iter(|| black_box(winder_targets(&v, black_box(&t))))
+    });
     for (name, method) in [
         ("winder-4axis.toml", IkMethod::Auto),
         ("winder-4axis.toml", IkMethod::Solver),
@@ -56,6 +60,11 @@ fn benches(c: &mut Criterion) {
             b.iter(|| black_box(solve(&m, &targets, method).expect("ik")))
         });
     }
+    let m = machine("winder-4axis.toml");
+    let track = solve(&m, &targets, IkMethod::Auto).expect("ik");
+    c.bench_function("band passed winder-4axis.toml, 1e5-point circuit", |b| {
+        b.iter(|| black_box(band_passed(&m, &targets, &track)))
+    });
 }
 
 criterion_group!(name = g; config = Criterion::default().sample_size(10); targets = benches);

@@ -23,7 +23,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::file::{MachineKind, SpindleFollows};
-use crate::{JointKind, Machine, MachineError, Target};
+use crate::{Fk, JointKind, Machine, MachineError, Target};
 
 /// Orientation residuals (dimensionless) are weighed as lengths of this many mm.
 pub const ORIENTATION_SCALE: f64 = 100.0;
@@ -203,6 +203,8 @@ struct Equations<'a> {
     q: Vec<f64>,
     /// Per axis: whether it moves the payout point's link, the mandrel's link.
     moves: &'a [(bool, bool)],
+    /// The forward kinematics (every link the equations read).
+    fk: &'a Fk,
     /// Link poses, reused between evaluations.
     poses: RefCell<Vec<Isometry3<f64>>>,
 }
@@ -256,6 +258,7 @@ impl<'a> Equations<'a> {
         t: &'a Target,
         unknowns: &'a [usize],
         moves: &'a [(bool, bool)],
+        fk: &'a Fk,
         q: &[f64],
     ) -> Self {
         Self {
@@ -264,6 +267,7 @@ impl<'a> Equations<'a> {
             unknowns,
             q: q.to_vec(),
             moves,
+            fk,
             poses: RefCell::new(Vec::with_capacity(m.links.len())),
         }
     }
@@ -285,7 +289,7 @@ impl<'a> Equations<'a> {
         let m = self.m;
         let roles = &m.roles;
         let mut buf = self.poses.borrow_mut();
-        m.poses_into(&self.q, &mut buf);
+        self.fk.poses_into(&self.q, &mut buf);
         let poses: &[Isometry3<f64>] = &buf;
         let payout = &m.points[roles.payout];
         let head = poses[payout.link];
@@ -588,7 +592,9 @@ pub fn solve(m: &Machine, targets: &[Target], method: IkMethod) -> Result<AxisTr
     };
     let lm = LevenbergMarquardt::new().with_tol(1e-15).with_patience(200);
     let moves = moves(m);
-    let equations = |t, q: &[f64]| Equations::new(m, t, &unknowns, &moves, q);
+    let fk = Fk::new(m);
+    let fk_mandrel = Fk::for_links(m, &[m.roles.mandrel]);
+    let equations = |t, q: &[f64]| Equations::new(m, t, &unknowns, &moves, &fk, q);
     let mut before = q.clone();
     let mut poses = Vec::with_capacity(m.links.len());
     for (i, t) in targets.iter().enumerate() {
@@ -597,7 +603,7 @@ pub fn solve(m: &Machine, targets: &[Target], method: IkMethod) -> Result<AxisTr
             l.solve(t, &prev, &mut q);
         } else {
             if let Some(sp) = &spindle {
-                m.poses_into(&q, &mut poses);
+                fk_mandrel.poses_into(&q, &mut poses);
                 q[sp.axis] = sp.angle(t, &poses[m.roles.mandrel], q[sp.axis], prev[sp.axis]);
             }
             if !unknowns.is_empty() {
@@ -619,7 +625,7 @@ pub fn solve(m: &Machine, targets: &[Target], method: IkMethod) -> Result<AxisTr
                     }
                 }
                 if first {
-                    nearest_home_branch(m, t, &unknowns, &moves, &mut q);
+                    nearest_home_branch(m, t, &unknowns, &moves, &fk, &mut q);
                 }
             }
         }
@@ -627,47 +633,68 @@ pub fn solve(m: &Machine, targets: &[Target], method: IkMethod) -> Result<AxisTr
         before.clone_from(&prev);
         prev.clone_from(&q);
     }
-    // The residuals of every point by forward kinematics, in runs (one per
-    // worker of rayon's pool on long trajectories).
-    let width = m.axes.len().max(1);
-    let threads = rayon::current_num_threads()
-        .min(targets.len() / 20_000)
-        .clamp(1, 16);
-    let per = targets.len().div_ceil(threads);
-    let run = |ts: &[Target], values: &[f64]| -> Vec<(f64, f64)> {
-        let Some(t0) = ts.first() else {
-            return Vec::new();
-        };
-        let mut check =
-            Equations::new(m, t0, &unknowns, &moves, &values[..width.min(values.len())]);
-        ts.iter()
-            .zip(values.chunks_exact(width))
-            .map(|(t, q)| {
-                check.t = t;
-                check.q.copy_from_slice(q);
-                let e = check.eval(false);
-                let pos = (e.r[0] * e.r[0] + e.r[1] * e.r[1] + e.r[2] * e.r[2]).sqrt();
-                let ori = e.r[3..]
-                    .iter()
-                    .map(|v| (v / ORIENTATION_SCALE).abs())
-                    .fold(0.0, f64::max);
-                (pos, ori)
-            })
-            .collect()
-    };
-    let residuals: Vec<(f64, f64)> = if threads == 1 || m.axes.is_empty() {
-        run(targets, &track.values)
-    } else {
-        let runs: Vec<Vec<(f64, f64)>> = targets
-            .par_chunks(per)
-            .zip(track.values.par_chunks(per * width))
-            .map(|(ts, vs)| run(ts, vs))
-            .collect();
-        runs.into_iter().flatten().collect()
-    };
-    (track.residual_mm, track.residual_orientation) = residuals.into_iter().unzip();
+    (track.residual_mm, track.residual_orientation) =
+        residuals(m, targets, &track.values, &unknowns, &moves);
     track.issues = feasibility(m, targets, &track);
     Ok(track)
+}
+
+/// The position residual (mm) and the orientation residual (the largest of the
+/// equations' cosines) of every point of a solved trajectory (`values`, a row
+/// of axis values per target), by forward kinematics.
+///
+/// Every point is checked, whichever solver produced it: the closed form is
+/// exact only where the point is reachable (a cross feed's discriminant
+/// clipped at zero, an eye turned as near as it goes), and a point checked at
+/// a sample would let such a stretch between samples pass unseen. The check
+/// is cheap instead: the forward kinematics is prepared once ([`Fk`]: rigid
+/// transforms composed in advance, only the payout point's and the mandrel's
+/// chains placed, one pose buffer per run, one `sin_cos` per turning joint)
+/// and gives the reference's poses bit for bit, so the residuals reported are
+/// exactly what the reference forward kinematics gives. Long trajectories are
+/// checked in runs, one per worker of rayon's pool, each writing its own
+/// stretch of the two outputs.
+fn residuals(
+    m: &Machine,
+    targets: &[Target],
+    values: &[f64],
+    unknowns: &[usize],
+    moves: &[(bool, bool)],
+) -> (Vec<f64>, Vec<f64>) {
+    let width = m.axes.len().max(1);
+    let n = targets.len().min(values.len() / width);
+    let mut pos = vec![0.0; n];
+    let mut ori = vec![0.0; n];
+    let fk = Fk::for_links(m, &[m.points[m.roles.payout].link, m.roles.mandrel]);
+    let run = |ts: &[Target], values: &[f64], pos: &mut [f64], ori: &mut [f64]| {
+        let (Some(t0), Some(q0)) = (ts.first(), values.get(..width)) else {
+            return;
+        };
+        let mut check = Equations::new(m, t0, unknowns, moves, &fk, q0);
+        let rows = ts.iter().zip(values.chunks_exact(width));
+        for ((t, q), (p, o)) in rows.zip(pos.iter_mut().zip(ori.iter_mut())) {
+            check.t = t;
+            check.q.copy_from_slice(q);
+            let e = check.eval(false);
+            *p = (e.r[0] * e.r[0] + e.r[1] * e.r[1] + e.r[2] * e.r[2]).sqrt();
+            *o = e.r[3..]
+                .iter()
+                .map(|v| (v / ORIENTATION_SCALE).abs())
+                .fold(0.0, f64::max);
+        }
+    };
+    let threads = rayon::current_num_threads().min(n / 20_000).clamp(1, 16);
+    if threads == 1 {
+        run(targets, values, &mut pos, &mut ori);
+    } else {
+        let per = n.div_ceil(threads);
+        targets[..n]
+            .par_chunks(per)
+            .zip(values.par_chunks(per * width))
+            .zip(pos.par_chunks_mut(per).zip(ori.par_chunks_mut(per)))
+            .for_each(|((ts, vs), (p, o))| run(ts, vs, p, o));
+    }
+    (pos, ori)
 }
 
 /// Gauss–Newton from a close start (the fast path between neighbouring points):
@@ -708,10 +735,11 @@ fn nearest_home_branch(
     t: &Target,
     unknowns: &[usize],
     moves: &[(bool, bool)],
+    fk: &Fk,
     q: &mut [f64],
 ) {
     let norm = |q: &[f64]| {
-        let e = Equations::new(m, t, unknowns, moves, q).eval(false);
+        let e = Equations::new(m, t, unknowns, moves, fk, q).eval(false);
         e.r.iter().map(|v| v * v).sum::<f64>().sqrt()
     };
     let base = norm(q);
@@ -776,14 +804,17 @@ fn feasibility(m: &Machine, targets: &[Target], t: &AxisTrack) -> Vec<Issue> {
         } else {
             1.0
         };
-        let col: Vec<f64> = t.rows().map(|q| q[a]).collect();
-        let steps: Vec<f64> = col.windows(2).map(|w| (w[1] - w[0]).abs()).collect();
-        for (k, &step) in steps.iter().enumerate() {
-            let before = if k > 0 { steps[k - 1] } else { 0.0 };
-            let after = steps.get(k + 1).copied().unwrap_or(0.0);
-            if step > floor && step > 20.0 * before.max(after) {
-                note(IssueKind::Jump, Some(&ax.name), targets[k + 1].x, step);
+        // Steps between neighbouring rows, with the step before and after.
+        let step = |k: usize| (t.row(k + 1)[a] - t.row(k)[a]).abs();
+        let n = t.rows().len().saturating_sub(1);
+        let mut before = 0.0;
+        for k in 0..n {
+            let here = step(k);
+            let after = if k + 1 < n { step(k + 1) } else { 0.0 };
+            if here > floor && here > 20.0 * f64::max(before, after) {
+                note(IssueKind::Jump, Some(&ax.name), targets[k + 1].x, here);
             }
+            before = here;
         }
     }
     out

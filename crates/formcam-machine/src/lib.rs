@@ -11,18 +11,20 @@
 mod band;
 mod error;
 mod file;
+mod fk;
 mod ik;
 mod machine;
 pub mod shipped;
 mod target;
 mod urdf;
 
-pub use band::band_passed;
+pub use band::{BandPassed, band_passed};
 pub use error::MachineError;
 pub use file::{
     DhSpec, JointType, LinkSpec, MachineFile, MachineKind, MachineTable, OriginSpec, PointSpec,
     SpindleFollows, VisualSpec,
 };
+pub use fk::Fk;
 pub use ik::{AxisTrack, IkMethod, Issue, IssueKind, ORIENTATION_SCALE, solve};
 pub use machine::{Axis, Joint, JointKind, KeyPoint, Link, Machine, Roles, Shape, Visual};
 pub use target::{Target, placement_targets, winder_targets};

@@ -44,6 +44,7 @@ pub struct Joint {
 
 impl Joint {
     /// The joint's transform for the joint value `q` (rad or mm).
+    #[inline]
     pub fn transform(&self, q: f64) -> Isometry3<f64> {
         let motion = match self.kind {
             JointKind::Revolute => Isometry3::from_parts(

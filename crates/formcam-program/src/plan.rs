@@ -4,7 +4,9 @@
 
 use formcam_geom::Cylinder;
 use formcam_machine::{AxisTrack, MachineKind, solve};
-use formcam_machine::{Machine, Target, band_passed, placement_targets, winder_targets};
+use formcam_machine::{
+    BandPassed, Machine, Target, band_passed, placement_targets, winder_targets,
+};
 use formcam_progress::{Phase, Progress, Silent, Step, Tally};
 use formcam_winding::eye::{EyeSpec, EyeTrajectory, eye_trajectory};
 use formcam_winding::job::{LayerKind, Mandrel, WindingSpec};
@@ -123,10 +125,12 @@ impl Wound {
     /// machine it was planned on), per target, mm; empty before
     /// [`Stage::Axes`]. Computed on demand: only `band.csv` and the summary
     /// read it, a program does not.
-    pub fn band_passed(&self, m: &Machine) -> Vec<Vec<f64>> {
+    pub fn band_passed(&self, m: &Machine) -> BandPassed {
         self.track
             .as_ref()
-            .map_or_else(Vec::new, |track| band_passed(m, &self.targets, track))
+            .map_or_else(BandPassed::default, |track| {
+                band_passed(m, &self.targets, track)
+            })
     }
 }
 

@@ -9,6 +9,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use formcam_machine::AxisTrack;
+use formcam_machine::BandPassed;
 use formcam_machine::Machine;
 use formcam_program::{
     Assembled, Check, MachineSource, ProgramError, Stage, WindJob, Wound, WoundLayer, WoundProgram,
@@ -530,13 +531,13 @@ fn axes_csv(m: &Machine, w: &Wound, track: &AxisTrack) -> Vec<u8> {
     s.into_bytes()
 }
 
-fn band_csv(m: &Machine, w: &Wound, passed: &[Vec<f64>]) -> Vec<u8> {
+fn band_csv(m: &Machine, w: &Wound, passed: &BandPassed) -> Vec<u8> {
     let mut s = String::from("x");
     for &k in &m.roles.band_path {
         let _ = write!(s, ",{}", m.points[k].name);
     }
     s.push('\n');
-    for (t, row) in w.targets.iter().zip(passed) {
+    for (t, row) in w.targets.iter().zip(passed.rows()) {
         let _ = write!(s, "{}", t.x);
         for v in row {
             let _ = write!(s, ",{v}");
@@ -551,7 +552,7 @@ fn add_axes_summary(
     m: &Machine,
     source: &MachineSource,
     t: &AxisTrack,
-    passed: Option<&Vec<f64>>,
+    passed: Option<&[f64]>,
 ) {
     let issues: Vec<Value> = t
         .issues

@@ -25,8 +25,9 @@ pub struct Applied {
 }
 
 /// Nodes corrected between two progress reports: enough to keep every
-/// worker of the pool busy (runs of at least 4096 nodes each).
-const CHUNK: usize = 1 << 16;
+/// worker of the pool busy, and a multiple of the corrector's runs, so the
+/// pieces change nothing.
+const CHUNK: usize = 16 * crate::correct::RUN;
 
 impl Corrector<'_> {
     /// Corrects every movable node of `program` and writes it back. With

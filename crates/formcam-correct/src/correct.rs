@@ -389,23 +389,23 @@ impl<'g> Corrector<'g> {
     }
 
     /// The corrections of all `nodes`, computed on rayon's global pool in
-    /// runs of consecutive nodes, each run walking from one node's facet to
-    /// the next and writing straight into the result. The runs come from
-    /// halving the list until they are shorter than 8192 nodes, so they are
-    /// the same whatever the number of threads (where a node has two feet
-    /// at equal distance, the walk's start decides).
+    /// runs of 4096 consecutive nodes counted from the first, each run
+    /// walking from one node's facet to the next. The runs are the same
+    /// whatever the number of threads, and the same when the list is
+    /// corrected in pieces whose lengths are multiples of 4096 (where a
+    /// node has two feet at equal distance, the walk's start decides).
     pub fn correct(&self, nodes: &[V3]) -> Vec<NodeCorrection> {
-        const RUN: usize = 4096;
         let mut out = Vec::with_capacity(nodes.len());
-        nodes
-            .par_iter()
-            .with_min_len(RUN)
-            .with_max_len(RUN)
-            .map_init(|| None, |hint, &p| self.correct_near(p, hint))
-            .collect_into_vec(&mut out);
+        out.par_extend(nodes.par_chunks(RUN).flat_map_iter(|run| {
+            let mut hint = None;
+            run.iter().map(move |&p| self.correct_near(p, &mut hint))
+        }));
         out
     }
 }
+
+/// The length of the runs [`Corrector::correct`] walks node to node.
+pub(crate) const RUN: usize = 4096;
 
 /// Checks every displacement against `limit_mm`: the first node beyond it
 /// is the error ([`CorrectError::Displacement`], its index in

@@ -396,11 +396,41 @@ impl<'g> Corrector<'g> {
     /// node has two feet at equal distance, the walk's start decides).
     pub fn correct(&self, nodes: &[V3]) -> Vec<NodeCorrection> {
         let mut out = Vec::with_capacity(nodes.len());
-        out.par_extend(nodes.par_chunks(RUN).flat_map_iter(|run| {
-            let mut hint = None;
-            run.iter().map(move |&p| self.correct_near(p, &mut hint))
-        }));
+        nodes
+            .par_iter()
+            .enumerate()
+            .with_min_len(RUN)
+            .map_init(Walk::default, |walk, (i, &p)| walk.step(self, nodes, i, p))
+            .collect_into_vec(&mut out);
         out
+    }
+}
+
+/// One worker's walk along the nodes: the hint the node before `next` left.
+#[derive(Debug, Default)]
+struct Walk {
+    /// The node the hint is for.
+    next: usize,
+    /// Where that node's walk starts.
+    hint: Option<Hint>,
+}
+
+impl Walk {
+    /// Corrects node `i` (at `p`) as a walk from the start of its run would.
+    /// A worker's share that begins inside a run first walks the run's
+    /// nodes before `i` (at most one run per share), so the result never
+    /// depends on how the pool splits the list.
+    fn step(&mut self, c: &Corrector, nodes: &[V3], i: usize, p: V3) -> NodeCorrection {
+        if i % RUN == 0 {
+            self.hint = None;
+        } else if self.next != i {
+            self.hint = None;
+            for &q in &nodes[i - i % RUN..i] {
+                c.correct_near(q, &mut self.hint);
+            }
+        }
+        self.next = i + 1;
+        c.correct_near(p, &mut self.hint)
     }
 }
 

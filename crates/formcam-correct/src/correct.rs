@@ -421,7 +421,7 @@ impl Walk {
     /// nodes before `i` (at most one run per share), so the result never
     /// depends on how the pool splits the list.
     fn step(&mut self, c: &Corrector, nodes: &[V3], i: usize, p: V3) -> NodeCorrection {
-        if i % RUN == 0 {
+        if i.is_multiple_of(RUN) {
             self.hint = None;
         } else if self.next != i {
             self.hint = None;

@@ -25,8 +25,8 @@
 //! ```
 
 use formcam_schema::{
-    Condition, Default as Given, Field, JobSchema, Kind, Range, Repeat, SchemaError, Table, Unit,
-    Value, validate,
+    Condition, Default as Given, JobSchema, Kind, Range, Repeat, SchemaError, Table, Unit, Value,
+    field, validate,
 };
 use serde::Deserialize;
 
@@ -206,24 +206,6 @@ impl DressJob {
                 feed_change_max: p.feed_change_max,
             },
         })
-    }
-}
-
-const fn field(
-    name: &'static str,
-    kind: Kind,
-    unit: Unit,
-    range: Option<Range>,
-    default: Given,
-    help: &'static str,
-) -> Field {
-    Field {
-        name,
-        kind,
-        unit,
-        range,
-        default,
-        help,
     }
 }
 

@@ -10,8 +10,8 @@ use formcam_machine::Machine;
 use formcam_machine::shipped::{names, shipped};
 use formcam_nc::{Dialect, Template};
 use formcam_schema::{
-    Default as Given, EmptyList, Field, JobSchema, Kind, Range, Repeat, SchemaError, Table, Unit,
-    Value, validate,
+    Default as Given, EmptyList, JobSchema, Kind, Range, Repeat, SchemaError, Table, Unit, Value,
+    field, validate,
 };
 use formcam_winding::job::{EYE, EyeJob, LAYER, MANDREL, MandrelSpec, WINDING, WindingSpec};
 use serde::{Deserialize, Serialize};
@@ -421,24 +421,6 @@ const MACHINES: &[&str] = &[
     "winder-6axis",
     "winder-xab",
 ];
-
-const fn field(
-    name: &'static str,
-    kind: Kind,
-    unit: Unit,
-    range: Option<Range>,
-    default: Given,
-    help: &'static str,
-) -> Field {
-    Field {
-        name,
-        kind,
-        unit,
-        range,
-        default,
-        help,
-    }
-}
 
 const POSITIVE: Option<Range> = Some(Range::above(0.0));
 

@@ -82,6 +82,25 @@ pub struct Field {
     pub help: &'static str,
 }
 
+/// A field, written in a description's `const` tables.
+pub const fn field(
+    name: &'static str,
+    kind: Kind,
+    unit: Unit,
+    range: Option<Range>,
+    default: Default,
+    help: &'static str,
+) -> Field {
+    Field {
+        name,
+        kind,
+        unit,
+        range,
+        default,
+        help,
+    }
+}
+
 /// The type of a field.
 #[derive(Debug, Clone, Copy, Serialize)]
 #[serde(rename_all = "kebab-case", tag = "type", content = "of")]

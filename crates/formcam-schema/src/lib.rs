@@ -13,7 +13,8 @@ mod markdown;
 mod validate;
 
 pub use describe::{
-    Bound, Condition, Default, EmptyList, Field, JobSchema, Kind, Range, Repeat, Table, Unit, Value,
+    Bound, Condition, Default, EmptyList, Field, JobSchema, Kind, Range, Repeat, Table, Unit,
+    Value, field,
 };
 pub use markdown::{MarkedError, markdown, replace_marked};
 pub use validate::{SchemaError, validate};

@@ -11,7 +11,9 @@ use std::fmt;
 use std::str::FromStr;
 
 use formcam_geom::{Cone, Cylinder, DomeShape, GeomError, Jet, Meridian, Tabulated, Vessel};
-use formcam_schema::{Condition, Default as Given, Field, Kind, Range, Repeat, Table, Unit, Value};
+use formcam_schema::{
+    Condition, Default as Given, Field, Kind, Range, Repeat, Table, Unit, Value, field,
+};
 use serde::{Deserialize, Serialize};
 
 use crate::{Ends, LayerSpec, MuSegment, Slippage, TubeTurn, WindingError};
@@ -778,24 +780,6 @@ impl EyeJob {
             samples: self.samples.unwrap_or(defaults.samples),
             nodes: self.nodes.unwrap_or(defaults.nodes),
         })
-    }
-}
-
-const fn field(
-    name: &'static str,
-    kind: Kind,
-    unit: Unit,
-    range: Option<Range>,
-    default: Given,
-    help: &'static str,
-) -> Field {
-    Field {
-        name,
-        kind,
-        unit,
-        range,
-        default,
-        help,
     }
 }
 

@@ -206,6 +206,28 @@ fn quoted(words: &[&str]) -> String {
 }
 
 impl Checker<'_> {
+    /// An array of inline tables (`[{ ... }, { ... }]`), each against
+    /// `fields`, named `prefix[1]`, `prefix[2]`, ...
+    fn inline_tables(&mut self, prefix: &str, fields: &[Field], a: &toml_edit::Array, at: usize) {
+        for (i, v) in a.iter().enumerate() {
+            let path = format!("{prefix}[{}]", i + 1);
+            let at = start(v.span()).unwrap_or(at);
+            match v {
+                Toml::InlineTable(t) => self.fields(&path, fields, &entries_of_inline(t), at),
+                other => {
+                    let found = type_name(&Item::Value(other.clone()));
+                    self.push(at, |line, column| SchemaError::WrongType {
+                        field: path,
+                        line,
+                        column,
+                        expected: "a table".into(),
+                        found,
+                    });
+                }
+            }
+        }
+    }
+
     fn push(&mut self, at: usize, make: impl FnOnce(usize, usize) -> SchemaError) {
         let (line, column) = line_col(self.text, at);
         self.found.push((make(line, column), at));
@@ -262,25 +284,7 @@ impl Checker<'_> {
                 }
             }
             (Repeat::Array, Item::Value(Toml::Array(a))) => {
-                for (i, v) in a.iter().enumerate() {
-                    let path = format!("{}[{}]", table.name, i + 1);
-                    let at = start(v.span()).unwrap_or(at);
-                    match v {
-                        Toml::InlineTable(t) => {
-                            self.fields(&path, table.fields, &entries_of_inline(t), at)
-                        }
-                        other => {
-                            let found = type_name(&Item::Value(other.clone()));
-                            self.push(at, |line, column| SchemaError::WrongType {
-                                field: path,
-                                line,
-                                column,
-                                expected: "a table".into(),
-                                found,
-                            });
-                        }
-                    }
-                }
+                self.inline_tables(table.name, table.fields, a, at)
             }
             (repeat, other) => {
                 let expected = match repeat {
@@ -411,23 +415,7 @@ impl Checker<'_> {
                 }
             }
             (Kind::Tables(sub), Item::Value(Toml::Array(a))) => {
-                for (i, v) in a.iter().enumerate() {
-                    let path = format!("{dotted}[{}]", i + 1);
-                    let at = start(v.span()).unwrap_or(at);
-                    match v {
-                        Toml::InlineTable(t) => self.fields(&path, sub, &entries_of_inline(t), at),
-                        other => {
-                            let found = type_name(&Item::Value(other.clone()));
-                            self.push(at, |line, column| SchemaError::WrongType {
-                                field: path,
-                                line,
-                                column,
-                                expected: "a table".into(),
-                                found,
-                            });
-                        }
-                    }
-                }
+                self.inline_tables(dotted, sub, a, at)
             }
             (Kind::Tables(sub), Item::ArrayOfTables(a)) => {
                 for (i, t) in a.iter().enumerate() {

@@ -1,0 +1,1 @@
+//! Short, escaped excerpts of user text for error messages.

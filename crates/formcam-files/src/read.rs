@@ -1,0 +1,1 @@
+//! Reading an input file: regular files only, with a size cap.

@@ -1,0 +1,1 @@
+//! A run's output folder written whole, never over an input.

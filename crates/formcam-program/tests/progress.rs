@@ -11,32 +11,7 @@ use formcam_program::{ProgramError, Stage, WindJob, plan_program, plan_until_wit
 use formcam_progress::{Hook, Phase, Progress, Step};
 
 /// A helical tube on the shipped 2-axis lathe winder (fast).
-const TUBE: &str = r#"
-[mandrel]
-kind = "cylinder"
-radius = 60.0
-length = 800.0
-
-[winding]
-mu = 0.0
-winding_angle_deg = 50.0
-band_width = 8.0
-band_thickness = 0.3
-dwell_min_deg = 360.0
-
-[eye]
-mode = "axis-parallel"
-radius = 250.0
-clearance = 15.0
-l_max = 1000.0
-samples = 2001
-
-[machine]
-name = "winder-2axis"
-
-[post]
-dialect = "marlin-xab"
-"#;
+const TUBE: &str = include_str!("jobs/tube.toml");
 
 fn job(text: &str) -> WindJob {
     WindJob::from_toml(text, &PathBuf::from(env!("CARGO_MANIFEST_DIR"))).unwrap()

@@ -6,7 +6,7 @@ use rayon::prelude::*;
 
 use crate::patch::Foot;
 use crate::vec3::{V3, axpy, cross, dot, norm, scale, sub, unit};
-use crate::{CorrectError, Grid, Interpolation, Surface};
+use crate::{CorrectError, Grid, Interpolation, Rule, Surface};
 
 /// The milling tool, as the program's nodes describe it: `point` or
 /// `ball:R` (R in mm) in job files and on the command line.
@@ -27,22 +27,21 @@ pub enum Tool {
 }
 
 impl std::str::FromStr for Tool {
-    type Err = CorrectError;
+    type Err = Rule;
 
     /// `point` or `ball:R` (R in mm, > 0).
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        let bad = |m: String| Err(CorrectError::Option(m));
         if s == "point" {
             return Ok(Self::Point);
         }
         let Some(r) = s.strip_prefix("ball:") else {
-            return bad("allowed `point` or `ball:R` (R in mm)".into());
+            return Err(Rule::ToolName);
         };
         let Ok(radius) = r.trim().parse::<f64>() else {
-            return bad(format!("the radius `{r}` is not a number (e.g. ball:6)"));
+            return Err(Rule::BallRadiusText { written: r.into() });
         };
         if !(radius.is_finite() && radius > 0.0) {
-            return bad("the ball radius must be > 0 mm".into());
+            return Err(Rule::BallRadius);
         }
         Ok(Self::Ball { radius })
     }
@@ -76,21 +75,10 @@ impl Default for Options {
 }
 
 impl Options {
-    /// Checks the ranges; the messages name the option.
+    /// Checks the ranges against the `[correct]` job's description; the
+    /// messages name the job's field ([`CorrectError::Field`]).
     pub fn validate(&self) -> Result<(), CorrectError> {
-        let bad = |m: String| Err(CorrectError::Option(m));
-        if !(self.gain.is_finite() && self.gain > 0.0 && self.gain <= 2.0) {
-            return bad(format!("gain = {}: allowed (0, 2]", self.gain));
-        }
-        if let Tool::Ball { radius } = self.tool
-            && !(radius.is_finite() && radius > 0.0)
-        {
-            return bad(format!("tool ball radius = {radius} mm: must be > 0"));
-        }
-        if !(self.margin_mm.is_finite() && self.margin_mm >= 0.0) {
-            return bad(format!("margin = {} mm: must be >= 0", self.margin_mm));
-        }
-        Ok(())
+        crate::job::check_options(self)
     }
 }
 

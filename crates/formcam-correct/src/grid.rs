@@ -1,7 +1,7 @@
 //! Measured sections harmonised into a grid of quadrilateral facets.
 
 use crate::vec3::{V3, add, dot, norm, scale, sub, unit};
-use crate::{CorrectError, Measurements};
+use crate::{CorrectError, JobField, Measurements, Rule, SectionsError};
 
 /// The measured points as a regular grid: `sections` rows of
 /// `points_per_section` corresponding points. Facet `(i, j)` is spanned by
@@ -57,11 +57,11 @@ fn spatial_order(m: &Measurements) -> Result<Vec<usize>, CorrectError> {
         .map(|p| norm(sub(p.nominal, m.sections[0].points[0].nominal)))
         .fold(0.0, f64::max);
     if spread <= 1e-9 * (1.0 + size) {
-        return Err(CorrectError::Sections(format!(
-            "sections `{}` and `{}` lie at the same place: sections must be apart",
-            m.sections[0].name,
-            m.sections[n - 1].name
-        )));
+        return Err(SectionsError::SamePlace {
+            first: m.sections[0].name.clone(),
+            second: m.sections[n - 1].name.clone(),
+        }
+        .into());
     }
     let e = unit(sub(across[far], across[0]));
     let key: Vec<f64> = across.iter().map(|c| dot(*c, e)).collect();
@@ -69,10 +69,11 @@ fn spatial_order(m: &Measurements) -> Result<Vec<usize>, CorrectError> {
     order.sort_by(|&a, &b| key[a].total_cmp(&key[b]));
     for w in order.windows(2) {
         if key[w[1]] - key[w[0]] <= 1e-6 * spread {
-            return Err(CorrectError::Sections(format!(
-                "sections `{}` and `{}` lie at the same place: sections must be apart",
-                m.sections[w[0]].name, m.sections[w[1]].name
-            )));
+            return Err(SectionsError::SamePlace {
+                first: m.sections[w[0]].name.clone(),
+                second: m.sections[w[1]].name.clone(),
+            }
+            .into());
         }
     }
     Ok(order)
@@ -109,37 +110,32 @@ impl Grid {
         m: &Measurements,
         points_per_section: Option<usize>,
     ) -> Result<Self, CorrectError> {
-        let err = |s: String| Err(CorrectError::Sections(s));
+        let err = |e: SectionsError| Err(CorrectError::Sections(e));
         if m.sections.len() < 2 {
-            return err(format!(
-                "{} section(s) measured: the correction needs at least 2 sections",
-                m.sections.len()
-            ));
+            return err(SectionsError::TooFew {
+                count: m.sections.len(),
+            });
         }
-        if let Some(n) = points_per_section
-            && n < 2
+        if let Some(count) = points_per_section
+            && let Some(Err(rule)) = JobField::PointsPerSection
+                .described()
+                .map(|f| Rule::check(f, count as f64))
         {
-            return err(format!("points per section = {n}: must be at least 2"));
+            return err(SectionsError::PointsPerSection { count, rule });
         }
         let with_normals = m.points().filter(|p| p.normal.is_some()).count();
         if with_normals != 0 && with_normals != m.len() {
-            return err(format!(
-                "{with_normals} of {} points have a normal: give normals for all or none",
-                m.len()
-            ));
-        }
-        if let Some(n) = points_per_section
-            && n > 100_000
-        {
-            return err(format!("points per section = {n}: at most 100000"));
+            return err(SectionsError::SomeNormals {
+                with_normals,
+                points: m.len(),
+            });
         }
         for s in &m.sections {
             if s.points.len() < 2 {
-                return err(format!(
-                    "section `{}` has {} point(s): a section needs at least 2",
-                    s.name,
-                    s.points.len()
-                ));
+                return err(SectionsError::ShortSection {
+                    section: s.name.clone(),
+                    points: s.points.len(),
+                });
             }
         }
         let order = spatial_order(m)?;
@@ -154,22 +150,21 @@ impl Grid {
                 .sum();
             for w in s.points.windows(2) {
                 if norm(sub(w[1].nominal, w[0].nominal)) <= 1e-9 * (1.0 + len) {
-                    return err(format!(
-                        "section `{}`: points `{}` and `{}` are at the same place (duplicate point)",
-                        s.name, w[0].point, w[1].point
-                    ));
+                    return err(SectionsError::DuplicatePoint {
+                        section: s.name.clone(),
+                        first: w[0].point.clone(),
+                        second: w[1].point.clone(),
+                    });
                 }
             }
             let dir = sub(s.points[s.points.len() - 1].nominal, s.points[0].nominal);
             if let Some(p) = prev_dir
                 && dot(p, dir) < 0.0
             {
-                return err(format!(
-                    "section `{}` runs the other way than section `{}`: list the points of every \
-                     section in the same direction",
-                    s.name,
-                    sections[j - 1].name
-                ));
+                return err(SectionsError::Reversed {
+                    section: s.name.clone(),
+                    previous: sections[j - 1].name.clone(),
+                });
             }
             prev_dir = Some(dir);
         }

@@ -21,15 +21,34 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 
 use formcam_nc::Dialect;
+use formcam_schema::{
+    Default as Preset, Field, JobSchema, Kind, Range, Repeat, SchemaError, Table, Unit, Value,
+    field, validate,
+};
 use serde::Deserialize;
 
-use crate::{CorrectError, Options, Tool};
+use crate::error::refused_value;
+use crate::{CorrectError, Given, Options, Rule, Tool};
 
 /// The default of the largest plausible deviation and displacement, mm.
 pub const DEFAULT_MAX_DEVIATION_MM: f64 = 5.0;
 
 /// The default chord tolerance of arcs written back as `G1`, mm.
 pub const DEFAULT_ARC_TOLERANCE_MM: f64 = 0.001;
+
+/// The interpolations' names.
+pub const INTERPOLATIONS: &[&str] = &["bilinear", "bicubic"];
+
+/// The dialects a milling program is read in (names and aliases, any case).
+pub const MILLING_DIALECTS: &[&str] = &[
+    "iso",
+    "fanuc",
+    "sinumerik-840d",
+    "sinumerik",
+    "840d",
+    "linuxcnc",
+    "marlin-xab",
+];
 
 /// A setting of a correction, as errors name it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -61,6 +80,22 @@ pub enum JobField {
 }
 
 impl JobField {
+    /// Every setting, in the order of the `[correct]` table's description.
+    pub const ALL: [JobField; 12] = [
+        Self::Measurements,
+        Self::Program,
+        Self::Tool,
+        Self::Interpolation,
+        Self::Gain,
+        Self::Margin,
+        Self::Noise,
+        Self::ArcTolerance,
+        Self::Dialect,
+        Self::PointsPerSection,
+        Self::MaxSegment,
+        Self::MaxDeviation,
+    ];
+
     /// The field's key in the `[correct]` table.
     pub fn key(self) -> &'static str {
         match self {
@@ -76,6 +111,29 @@ impl JobField {
             Self::PointsPerSection => "points_per_section",
             Self::MaxSegment => "max_segment_mm",
             Self::MaxDeviation => "max_deviation_mm",
+        }
+    }
+
+    /// The setting whose key is `key`.
+    pub fn from_key(key: &str) -> Option<JobField> {
+        Self::ALL.into_iter().find(|f| f.key() == key)
+    }
+
+    /// The field's description in [`CORRECT_JOB`]: its kind, unit, range,
+    /// default and help.
+    pub fn described(self) -> Option<&'static Field> {
+        CORRECT.field(self.key())
+    }
+
+    /// `v` against the field's range.
+    fn check(self, v: f64) -> Result<(), CorrectError> {
+        match self.described().map(|f| Rule::check(f, v)) {
+            Some(Err(rule)) => Err(CorrectError::Field {
+                field: self,
+                value: Given::Number(v),
+                rule,
+            }),
+            _ => Ok(()),
         }
     }
 }
@@ -123,56 +181,37 @@ impl Default for Settings {
 }
 
 impl Settings {
-    /// Checks every range; the error names the field
-    /// ([`CorrectError::Field`]).
+    /// Checks every range against the `[correct]` table's description; the
+    /// error names the field ([`CorrectError::Field`]).
     pub fn check(&self) -> Result<(), CorrectError> {
-        let bad = |field: JobField, value: f64, rule: &str| {
-            Err(CorrectError::Field {
-                field,
-                value: value.to_string(),
-                rule: rule.to_string(),
-            })
-        };
-        let o = &self.options;
-        if !(o.gain.is_finite() && o.gain > 0.0 && o.gain <= 2.0) {
-            return bad(JobField::Gain, o.gain, "allowed (0, 2]");
+        check_options(&self.options)?;
+        JobField::Noise.check(self.noise_mm)?;
+        JobField::MaxDeviation.check(self.max_deviation_mm)?;
+        if let Some(m) = self.max_segment_mm {
+            JobField::MaxSegment.check(m)?;
         }
-        if let Tool::Ball { radius } = o.tool
-            && !(radius.is_finite() && radius > 0.0)
-        {
-            return Err(CorrectError::Field {
-                field: JobField::Tool,
-                value: format!("ball:{radius}"),
-                rule: "the ball radius must be > 0 mm".into(),
-            });
-        }
-        if !(o.margin_mm.is_finite() && o.margin_mm >= 0.0) {
-            return bad(JobField::Margin, o.margin_mm, "must be >= 0 mm");
-        }
-        if !(self.noise_mm.is_finite() && self.noise_mm >= 0.0) {
-            return bad(JobField::Noise, self.noise_mm, "must be >= 0 mm");
-        }
-        if !(self.max_deviation_mm.is_finite() && self.max_deviation_mm > 0.0) {
-            return bad(
-                JobField::MaxDeviation,
-                self.max_deviation_mm,
-                "must be > 0 mm",
-            );
-        }
-        if let Some(m) = self.max_segment_mm
-            && !(m.is_finite() && m > 0.0)
-        {
-            return bad(JobField::MaxSegment, m, "must be > 0 mm");
-        }
-        if !(self.arc_tolerance_mm.is_finite() && self.arc_tolerance_mm > 0.0) {
-            return bad(
-                JobField::ArcTolerance,
-                self.arc_tolerance_mm,
-                "must be > 0 mm",
-            );
+        JobField::ArcTolerance.check(self.arc_tolerance_mm)?;
+        if let Some(n) = self.points_per_section {
+            JobField::PointsPerSection.check(n as f64)?;
         }
         Ok(())
     }
+}
+
+/// The correction's options against their ranges, named as the job's
+/// fields.
+pub(crate) fn check_options(o: &Options) -> Result<(), CorrectError> {
+    JobField::Gain.check(o.gain)?;
+    if let Tool::Ball { radius } = o.tool
+        && !(radius.is_finite() && radius > 0.0)
+    {
+        return Err(CorrectError::Field {
+            field: JobField::Tool,
+            value: Given::Tool(o.tool),
+            rule: Rule::BallRadius,
+        });
+    }
+    JobField::Margin.check(o.margin_mm)
 }
 
 /// A correction job: the CMM report, the program and the settings.
@@ -217,25 +256,28 @@ impl CorrectionJob {
         table.contains_key("correct")
     }
 
-    /// Reads a `[correct]` job; its paths are taken relative to `base_dir`
-    /// (the job file's folder). Errors name the job's field.
+    /// Reads a `[correct]` job, validated first against [`CORRECT_JOB`];
+    /// its paths are taken relative to `base_dir` (the job file's folder).
+    /// Errors name the job's field: a value out of its range or list as
+    /// [`CorrectError::Field`] (the words of [`Settings::check`]), other
+    /// refusals with their `line:column`.
     pub fn from_toml(text: &str, base_dir: &Path) -> Result<Self, CorrectError> {
-        let table: toml::Table =
-            toml::from_str(text).map_err(|e| CorrectError::Job(e.message().to_string()))?;
-        if !Self::is_job(&table) {
-            return Err(CorrectError::Job(
-                "no [correct] table (a correction job names measurements and program there; \
-                 see examples/correct-mould.toml)"
-                    .into(),
-            ));
+        let checked = validate(&CORRECT_JOB, text);
+        if let Err(e @ SchemaError::Syntax { .. }) = checked {
+            return Err(CorrectError::Job(Box::new(e)));
         }
-        let f: JobFile =
-            toml::from_str(text).map_err(|e| CorrectError::Job(e.message().to_string()))?;
+        let table: toml::Table =
+            toml::from_str(text).map_err(|e| CorrectError::Toml(Box::new(e)))?;
+        if !Self::is_job(&table) {
+            return Err(CorrectError::NoCorrectTable);
+        }
+        checked.map_err(job_error)?;
+        let f: JobFile = toml::from_str(text).map_err(|e| CorrectError::Toml(Box::new(e)))?;
         let j = f.correct;
-        let named = |field: JobField, value: &str, e: CorrectError| CorrectError::Field {
+        let named = |field: JobField, value: &str, rule: Rule| CorrectError::Field {
             field,
-            value: format!("\"{value}\""),
-            rule: e.to_string(),
+            value: Given::Word(value.into()),
+            rule,
         };
         let d = Settings::default();
         let tool = match &j.tool {
@@ -249,10 +291,15 @@ impl CorrectionJob {
             None => d.options.interpolation,
         };
         let dialect = match &j.dialect {
-            Some(s) => Some(
-                Dialect::from_name(s)
-                    .map_err(|e| named(JobField::Dialect, s, CorrectError::from(e)))?,
-            ),
+            Some(s) => Some(Dialect::from_name(s).map_err(|_| {
+                named(
+                    JobField::Dialect,
+                    s,
+                    Rule::Word {
+                        allowed: MILLING_DIALECTS,
+                    },
+                )
+            })?),
             None => None,
         };
         let settings = Settings {
@@ -278,6 +325,143 @@ impl CorrectionJob {
     }
 }
 
+/// The description's refusal of a job: a value out of its range or list
+/// in the words of [`Settings::check`], any other as it is.
+fn job_error(e: SchemaError) -> CorrectError {
+    match refused_value(&CORRECT_JOB, &e) {
+        Some((_, key, value, rule)) => match JobField::from_key(key) {
+            Some(field) => CorrectError::Field { field, value, rule },
+            None => CorrectError::Job(Box::new(e)),
+        },
+        None => CorrectError::Job(Box::new(e)),
+    }
+}
+
+const POSITIVE_MM: Option<Range> = Some(Range::above(0.0));
+const NOT_NEGATIVE_MM: Option<Range> = Some(Range::at_least(0.0));
+
+/// `[correct]`: what to correct and how.
+pub const CORRECT: Table = Table {
+    name: "correct",
+    repeat: Repeat::Single,
+    required: true,
+    help: "the CMM report, the milling program and how to correct it",
+    fields: &[
+        field(
+            "measurements",
+            Kind::File,
+            Unit::None,
+            None,
+            Preset::Required,
+            "the CMM report: CSV, or DMIS (`.dmi`, `.dmis`, `.dms`, `.dmo`)",
+        ),
+        field(
+            "program",
+            Kind::File,
+            Unit::None,
+            None,
+            Preset::Required,
+            "the milling program (G-code) or a node table (`.csv`)",
+        ),
+        field(
+            "tool",
+            Kind::Text,
+            Unit::None,
+            None,
+            Preset::Value(Value::Text("point")),
+            "`point` (nodes on the surface) or `ball:R` (nodes at the centre of a ball-end tool \
+             of radius R mm, > 0)",
+        ),
+        field(
+            "interpolation",
+            Kind::Word(INTERPOLATIONS),
+            Unit::None,
+            None,
+            Preset::Value(Value::Text("bilinear")),
+            "bilinear Coons patches (eq. 1) or bicubic Hermite patches (C1)",
+        ),
+        field(
+            "gain",
+            Kind::Number,
+            Unit::None,
+            Some(Range::open_closed(0.0, 2.0)),
+            Preset::Value(Value::Number(1.0)),
+            "displacement = −gain × interpolated deviation",
+        ),
+        field(
+            "margin_mm",
+            Kind::Number,
+            Unit::Mm,
+            NOT_NEGATIVE_MM,
+            Preset::Value(Value::Number(0.0)),
+            "nodes up to this far beyond the measured area are corrected by extrapolation; 0 \
+             leaves every node outside unchanged",
+        ),
+        field(
+            "noise_mm",
+            Kind::Number,
+            Unit::Mm,
+            NOT_NEGATIVE_MM,
+            Preset::Value(Value::Number(0.0)),
+            "the CMM's noise (standard deviation): the deviations are smoothed for it; 0 takes \
+             them as measured",
+        ),
+        field(
+            "arc_tolerance_mm",
+            Kind::Number,
+            Unit::Mm,
+            POSITIVE_MM,
+            Preset::Value(Value::Number(DEFAULT_ARC_TOLERANCE_MM)),
+            "`G2/G3` arcs are written back as `G1` chords within this",
+        ),
+        field(
+            "dialect",
+            Kind::Name(MILLING_DIALECTS),
+            Unit::None,
+            None,
+            Preset::Described("from the program's extension"),
+            "the program's syntax (`fanuc` is `iso`; `sinumerik` and `840d` are \
+             `sinumerik-840d`)",
+        ),
+        field(
+            "points_per_section",
+            Kind::Integer,
+            Unit::None,
+            Some(Range::closed(2.0, 100_000.0)),
+            Preset::Described(
+                "as measured when all sections have the same count, else the largest count",
+            ),
+            "resample every section to this many points",
+        ),
+        field(
+            "max_segment_mm",
+            Kind::Number,
+            Unit::Mm,
+            POSITIVE_MM,
+            Preset::Described("none: moves kept whole"),
+            "split straight feed moves longer than this into equal `G1` pieces first, so that \
+             the correction can bend them",
+        ),
+        field(
+            "max_deviation_mm",
+            Kind::Number,
+            Unit::Mm,
+            POSITIVE_MM,
+            Preset::Value(Value::Number(DEFAULT_MAX_DEVIATION_MM)),
+            "the largest plausible deviation and node displacement: one beyond it stops the run \
+             (a typing error in the report, or a part too far off to correct by re-milling)",
+        ),
+    ],
+};
+
+/// The correction job: `[correct]`.
+pub const CORRECT_JOB: JobSchema = JobSchema {
+    name: "correction",
+    help: "a correction job: the CMM report of a moulded part, the program that milled its \
+           mould, and how to correct the program",
+    tables: &[CORRECT],
+};
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -296,5 +480,34 @@ mod tests {
                 settings: Settings::default(),
             })
         );
+    }
+
+    /// The keys a serde struct takes, from its message for an unknown one.
+    fn serde_keys<T: serde::de::DeserializeOwned + std::fmt::Debug>() -> Vec<String> {
+        let e = toml::from_str::<T>("zz_probe = 1")
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        let list = e.split("expected").nth(1).unwrap_or_default();
+        let mut keys: Vec<String> = list
+            .split('`')
+            .skip(1)
+            .step_by(2)
+            .map(str::to_string)
+            .collect();
+        keys.sort();
+        keys
+    }
+
+    #[test]
+    fn every_key_the_reader_takes_is_described_and_every_setting_too() {
+        let mut described: Vec<String> = CORRECT.fields.iter().map(|f| f.name.into()).collect();
+        described.sort();
+        assert_eq!(serde_keys::<JobTable>(), described);
+        assert_eq!(serde_keys::<JobFile>(), ["correct"]);
+        for f in JobField::ALL {
+            assert_eq!(f.described().map(|d| d.name), Some(f.key()));
+        }
+        assert_eq!(JobField::ALL.len(), CORRECT.fields.len());
     }
 }

@@ -44,10 +44,14 @@ pub use correct::{
     Corrector, EDGE_TOLERANCE_MM, NodeCorrection, Options, Placement, Tool, Totals,
     check_displacement,
 };
-pub use error::CorrectError;
+pub use error::{
+    CorrectError, Given, MeasureError, MeasureProblem, ProgramError, Rule, ScenarioError,
+    SectionsError,
+};
 pub use grid::Grid;
 pub use job::{
-    CorrectionJob, DEFAULT_ARC_TOLERANCE_MM, DEFAULT_MAX_DEVIATION_MM, JobField, Settings,
+    CORRECT, CORRECT_JOB, CorrectionJob, DEFAULT_ARC_TOLERANCE_MM, DEFAULT_MAX_DEVIATION_MM,
+    INTERPOLATIONS, JobField, MILLING_DIALECTS, Settings,
 };
 pub use measure::{MeasuredPoint, Measurements, Section};
 pub use nodes::NodeTable;
@@ -55,5 +59,5 @@ pub use patch::{Interpolation, Surface};
 pub use pipeline::{Correction, correct_program, correct_program_with};
 pub use program::MillingProgram;
 pub use report::Report;
-pub use scenario::ScenarioJob;
+pub use scenario::{CMM, LOOP, PROGRAM, SCENARIO_JOB, SURFACE, ScenarioField, ScenarioJob, WARP};
 pub use smooth::{Smoothing, smooth};

@@ -1,7 +1,7 @@
 //! The CMM's measurements: nominal and actual points per control section.
 
-use crate::CorrectError;
 use crate::vec3::{V3, dot, norm, scale, sub, unit};
+use crate::{CorrectError, MeasureError, MeasureProblem};
 
 /// One measured point.
 #[derive(Debug, Clone, PartialEq)]
@@ -44,8 +44,8 @@ pub struct Measurements {
     pub sections: Vec<Section>,
 }
 
-fn bad(line: usize, msg: impl std::fmt::Display) -> CorrectError {
-    CorrectError::Measurements(format!("line {line}: {msg}"))
+fn bad(line: usize, problem: MeasureProblem) -> CorrectError {
+    CorrectError::Measurements(MeasureError::At { line, problem })
 }
 
 impl Measurements {
@@ -118,20 +118,15 @@ impl Measurements {
             .map(|(i, l)| (i + 1, l.trim()))
             .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
         let Some((header_line, header)) = rows.next() else {
-            return Err(CorrectError::Measurements("the file is empty".into()));
+            return Err(MeasureError::Empty.into());
         };
         let names: Vec<String> = header
             .split([',', ';'])
             .map(|s| s.trim().to_ascii_lowercase())
             .collect();
         let col = |n: &str| names.iter().position(|c| c == n);
-        let need = |n: &str| {
-            col(n).ok_or_else(|| {
-                CorrectError::Measurements(format!(
-                    "line {header_line}: no column `{n}` (the header needs section, point, x_nom, \
-                     y_nom, z_nom, and x_act, y_act, z_act or dev with nx, ny, nz)"
-                ))
-            })
+        let need = |n: &'static str| {
+            col(n).ok_or_else(|| bad(header_line, MeasureProblem::NoColumn { column: n }))
         };
         let sec = need("section")?;
         let pt = need("point")?;
@@ -140,9 +135,7 @@ impl Measurements {
             (Some(a), Some(b), Some(c)) => Some([a, b, c]),
             (None, None, None) => None,
             _ => {
-                return Err(CorrectError::Measurements(format!(
-                    "line {header_line}: give all of nx, ny, nz or none"
-                )));
+                return Err(bad(header_line, MeasureProblem::SomeNormals));
             }
         };
         let act_cols = match (col("x_act"), col("y_act"), col("z_act")) {
@@ -151,36 +144,51 @@ impl Measurements {
         };
         let dev_col = col("dev");
         if act_cols.is_none() && (dev_col.is_none() || normal_cols.is_none()) {
-            return Err(CorrectError::Measurements(format!(
-                "line {header_line}: give x_act, y_act, z_act, or dev with nx, ny, nz"
-            )));
+            return Err(bad(header_line, MeasureProblem::NoActualColumns));
         }
         let mut m = Measurements::default();
         for (line, row) in rows {
             let f: Vec<&str> = row.split([',', ';']).map(str::trim).collect();
             let field = |c: usize| -> Result<f64, CorrectError> {
-                let s = f
-                    .get(c)
-                    .ok_or_else(|| bad(line, format!("no value for `{}`", names[c])))?;
-                let v: f64 = s
-                    .parse()
-                    .map_err(|_| bad(line, format!("`{}` = `{s}` is not a number", names[c])))?;
+                let s = f.get(c).ok_or_else(|| {
+                    bad(
+                        line,
+                        MeasureProblem::NoValue {
+                            column: names[c].clone(),
+                        },
+                    )
+                })?;
+                let v: f64 = s.parse().map_err(|_| {
+                    bad(
+                        line,
+                        MeasureProblem::NotANumber {
+                            column: names[c].clone(),
+                            text: (*s).into(),
+                        },
+                    )
+                })?;
                 if !v.is_finite() {
-                    return Err(bad(line, format!("`{}` = `{s}` is not finite", names[c])));
+                    return Err(bad(
+                        line,
+                        MeasureProblem::NotFinite {
+                            column: names[c].clone(),
+                            text: (*s).into(),
+                        },
+                    ));
                 }
                 Ok(v)
             };
             let section = f.get(sec).copied().unwrap_or_default().to_string();
             let point = f.get(pt).copied().unwrap_or_default().to_string();
             if section.is_empty() || point.is_empty() {
-                return Err(bad(line, "a row needs `section` and `point`"));
+                return Err(bad(line, MeasureProblem::NoName));
             }
             let nominal = [field(nom[0])?, field(nom[1])?, field(nom[2])?];
             let normal = match normal_cols {
                 Some(c) => {
                     let n = [field(c[0])?, field(c[1])?, field(c[2])?];
                     if norm(n) < 1e-9 {
-                        return Err(bad(line, "the normal nx, ny, nz is zero"));
+                        return Err(bad(line, MeasureProblem::ZeroNormal));
                     }
                     Some(unit(n))
                 }
@@ -196,7 +204,7 @@ impl Measurements {
                         nominal[2] + d * n[2],
                     ]
                 }
-                _ => return Err(bad(line, "no actual point")),
+                _ => return Err(bad(line, MeasureProblem::NoActualPoint)),
             };
             m.push(
                 section,
@@ -249,7 +257,9 @@ impl Measurements {
                     "INCH" => 25.4,
                     "CM" => 10.0,
                     "METER" => 1000.0,
-                    other => return Err(bad(stmt_line, format!("unknown length unit `{other}`"))),
+                    other => {
+                        return Err(bad(stmt_line, MeasureProblem::Unit { unit: other.into() }));
+                    }
                 };
                 continue;
             }
@@ -261,7 +271,7 @@ impl Measurements {
                 continue;
             };
             let Some(close) = rest.find(')') else {
-                return Err(bad(stmt_line, "a feature label without `)`"));
+                return Err(bad(stmt_line, MeasureProblem::OpenLabel));
             };
             let label = s[s.find('(').map_or(0, |k| k + 1)..][..close]
                 .trim()
@@ -276,22 +286,33 @@ impl Measurements {
             }
             let parts: Vec<&str> = def.split(',').map(str::trim).collect();
             if parts.get(1) != Some(&"CART") {
-                return Err(bad(
-                    stmt_line,
-                    format!("feature {label}: only CART points are read"),
-                ));
+                return Err(bad(stmt_line, MeasureProblem::NotCartesian { label }));
             }
             let num = |k: usize| -> Result<f64, CorrectError> {
                 let s = parts.get(k).ok_or_else(|| {
-                    bad(stmt_line, format!("feature {label}: too few coordinates"))
+                    bad(
+                        stmt_line,
+                        MeasureProblem::FewCoordinates {
+                            label: label.clone(),
+                        },
+                    )
                 })?;
                 let v: f64 = s.parse().map_err(|_| {
-                    bad(stmt_line, format!("feature {label}: `{s}` is not a number"))
+                    bad(
+                        stmt_line,
+                        MeasureProblem::FeatureNotANumber {
+                            label: label.clone(),
+                            text: (*s).into(),
+                        },
+                    )
                 })?;
                 if !v.is_finite() {
                     return Err(bad(
                         stmt_line,
-                        format!("feature {label}: `{s}` is not finite"),
+                        MeasureProblem::FeatureNotFinite {
+                            label: label.clone(),
+                            text: (*s).into(),
+                        },
                     ));
                 }
                 Ok(v)
@@ -305,7 +326,7 @@ impl Measurements {
             };
             if is_actual {
                 if actual.insert(label.clone(), (stmt_line, p)).is_some() {
-                    return Err(bad(stmt_line, format!("FA({label}) is given twice")));
+                    return Err(bad(stmt_line, MeasureProblem::ActualTwice { label }));
                 }
             } else {
                 nominal.push((label, stmt_line, p, n));
@@ -314,13 +335,10 @@ impl Measurements {
         let mut m = Measurements::default();
         for (label, line, p, n) in nominal {
             let Some(&(_, a)) = actual.get(&label) else {
-                return Err(bad(line, format!("F({label}) has no measured FA({label})")));
+                return Err(bad(line, MeasureProblem::NoMeasuredFeature { label }));
             };
             let Some(k) = label.rfind(['_', '.', '-']) else {
-                return Err(bad(
-                    line,
-                    format!("DMIS label `{label}`: name points `<section>_<point>` (e.g. `S1_P3`)"),
-                ));
+                return Err(bad(line, MeasureProblem::LabelName { label }));
             };
             m.push(
                 label[..k].to_string(),
@@ -334,9 +352,7 @@ impl Measurements {
             )?;
         }
         if m.is_empty() {
-            return Err(CorrectError::Measurements(
-                "no F(..)=FEAT/POINT,CART features found".into(),
-            ));
+            return Err(MeasureError::NoFeatures.into());
         }
         m.finish()
     }
@@ -356,7 +372,10 @@ impl Measurements {
         if s.points.iter().any(|q| q.point == p.point) {
             return Err(bad(
                 line,
-                format!("point `{}` of section `{}` is given twice", p.point, s.name),
+                MeasureProblem::PointTwice {
+                    section: s.name.clone(),
+                    point: p.point,
+                },
             ));
         }
         s.points.push(p);
@@ -366,7 +385,7 @@ impl Measurements {
     /// Orders the points of every section by name (numerically where all are numbers).
     fn finish(mut self) -> Result<Self, CorrectError> {
         if self.is_empty() {
-            return Err(CorrectError::Measurements("no measured points".into()));
+            return Err(MeasureError::NoPoints.into());
         }
         for s in &mut self.sections {
             if s.points.iter().all(|p| p.point.parse::<f64>().is_ok()) {

@@ -1,6 +1,6 @@
 //! A tool path given as a plain CSV of nodes `x,y,z`.
 
-use crate::CorrectError;
+use crate::{CorrectError, ProgramError};
 
 /// A node table: its lines as they are and the nodes of its data rows.
 #[derive(Debug, Clone)]
@@ -40,26 +40,26 @@ impl NodeTable {
                 continue;
             }
             if f.len() < 3 {
-                return Err(CorrectError::Program(format!(
-                    "line {}: `{s}`: a node needs x, y, z",
-                    k + 1
-                )));
+                return Err(ProgramError::ShortRow {
+                    line: k + 1,
+                    row: s.into(),
+                }
+                .into());
             }
             let mut p = [0.0; 3];
             for c in 0..3 {
-                let v: f64 = f[c].parse().map_err(|_| {
-                    CorrectError::Program(format!(
-                        "line {}: `{s}`: `{}` is not a number",
-                        k + 1,
-                        f[c]
-                    ))
+                let v: f64 = f[c].parse().map_err(|_| ProgramError::NotANumber {
+                    line: k + 1,
+                    row: s.into(),
+                    text: f[c].into(),
                 })?;
                 if !v.is_finite() {
-                    return Err(CorrectError::Program(format!(
-                        "line {}: `{s}`: `{}` is not finite",
-                        k + 1,
-                        f[c]
-                    )));
+                    return Err(ProgramError::NotFinite {
+                        line: k + 1,
+                        row: s.into(),
+                        text: f[c].into(),
+                    }
+                    .into());
                 }
                 p[c] = v;
                 if let Some(d) = f[c].find('.') {
@@ -70,7 +70,7 @@ impl NodeTable {
             t.nodes.push(p);
         }
         if t.nodes.is_empty() {
-            return Err(CorrectError::Program("the node table has no nodes".into()));
+            return Err(ProgramError::NoNodes.into());
         }
         if t.decimals == 0 {
             t.decimals = 4;

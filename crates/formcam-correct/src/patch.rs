@@ -36,12 +36,13 @@ impl Interpolation {
 }
 
 impl std::str::FromStr for Interpolation {
-    type Err = crate::CorrectError;
+    type Err = crate::Rule;
 
     /// `bilinear` or `bicubic`.
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::from_name(s)
-            .ok_or_else(|| crate::CorrectError::Option("allowed bilinear, bicubic".into()))
+        Self::from_name(s).ok_or(crate::Rule::Word {
+            allowed: crate::INTERPOLATIONS,
+        })
     }
 }
 

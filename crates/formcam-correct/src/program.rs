@@ -4,7 +4,7 @@
 use formcam_nc::{Dialect, NodeKind, Toolpath, ToolpathOptions, read_toolpath};
 
 use crate::vec3::V3;
-use crate::{CorrectError, NodeTable, Settings};
+use crate::{CorrectError, NodeTable, ProgramError, Settings};
 
 /// A milling program to correct.
 #[derive(Debug, Clone)]
@@ -45,13 +45,11 @@ impl MillingProgram {
     /// is an error.
     pub fn gcode(text: &str, options: ToolpathOptions) -> Result<Self, CorrectError> {
         if text.trim().is_empty() {
-            return Err(CorrectError::Program("the program is empty".into()));
+            return Err(ProgramError::Empty.into());
         }
         let toolpath = read_toolpath(text, &options)?;
         if toolpath.nodes.is_empty() {
-            return Err(CorrectError::Program(
-                "the program has no motion blocks".into(),
-            ));
+            return Err(ProgramError::NoMotion.into());
         }
         Ok(Self::Gcode { toolpath, options })
     }

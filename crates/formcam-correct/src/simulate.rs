@@ -17,8 +17,8 @@ use formcam_progress::{Muted, Phase, Progress, Silent, Step};
 
 use crate::vec3::{V3, axpy, cross, dot, norm, scale, sub, unit};
 use crate::{
-    CorrectError, Corrector, Grid, Interpolation, MeasuredPoint, Measurements, MillingProgram,
-    Options, Section, Tool, smooth,
+    CorrectError, Corrector, Given, Grid, Interpolation, MeasuredPoint, Measurements,
+    MillingProgram, Options, Rule, ScenarioError, ScenarioField, Section, Tool, smooth,
 };
 
 /// The nominal mould surface.
@@ -77,83 +77,73 @@ pub struct Scenario {
 }
 
 impl Scenario {
-    /// Checks every field's range; the message names the field.
+    /// Checks every field against the scenario file's description
+    /// ([`crate::SCENARIO_JOB`]) and the limits between fields; the message
+    /// names the field.
     pub fn validate(&self) -> Result<(), CorrectError> {
-        let bad = |m: String| Err(CorrectError::Scenario(m));
-        let pos = |name: &str, v: f64| {
-            if v.is_finite() && v > 0.0 {
-                Ok(())
-            } else {
-                Err(CorrectError::Scenario(format!("{name} = {v}: must be > 0")))
-            }
-        };
-        pos("surface.length", self.length)?;
-        pos("surface.width", self.width)?;
-        pos("program.step_over", self.step_over)?;
-        pos("program.step", self.step)?;
-        pos("program.feed", self.feed)?;
+        use ScenarioField as F;
+        for (field, v) in [
+            (F::Length, self.length),
+            (F::Width, self.width),
+            (F::StepOver, self.step_over),
+            (F::Step, self.step),
+            (F::Feed, self.feed),
+        ] {
+            field.check(v)?;
+        }
         match self.shape {
             Shape::Panel { radius_x, radius_y } => {
-                pos("surface.radius_x", radius_x)?;
-                pos("surface.radius_y", radius_y)?;
+                F::RadiusX.check(radius_x)?;
+                F::RadiusY.check(radius_y)?;
             }
             Shape::NoseCone {
                 radius_start,
                 radius_end,
             } => {
-                pos("surface.radius_start", radius_start)?;
-                pos("surface.radius_end", radius_end)?;
+                F::RadiusStart.check(radius_start)?;
+                F::RadiusEnd.check(radius_end)?;
                 if self.width / 2.0 >= 0.95 * radius_start.min(radius_end) {
-                    return bad(format!(
-                        "surface.width = {}: a nose-cone panel must be narrower than 1.9 x the smaller radius ({})",
-                        self.width,
-                        radius_start.min(radius_end)
-                    ));
+                    return Err(ScenarioError::NoseConeWidth {
+                        width: self.width,
+                        radius: radius_start.min(radius_end),
+                    }
+                    .into());
                 }
             }
         }
-        if !(self.warp_amplitude.is_finite() && self.warp_amplitude >= 0.0) {
-            return bad(format!(
-                "warp.amplitude = {}: must be >= 0",
-                self.warp_amplitude
-            ));
-        }
-        if !(self.noise.is_finite() && self.noise >= 0.0) {
-            return bad(format!("cmm.noise = {}: must be >= 0", self.noise));
-        }
-        if self.sections > 10_000 || self.points > 10_000 {
-            return bad(format!(
-                "cmm.sections = {}, cmm.points = {}: at most 10000 each",
-                self.sections, self.points
-            ));
-        }
-        if self.sections < 2 || self.points < 2 {
-            return bad(format!(
-                "cmm.sections = {}, cmm.points = {}: at least 2 each",
-                self.sections, self.points
-            ));
+        for (field, v) in [
+            (F::Amplitude, self.warp_amplitude),
+            (F::Noise, self.noise),
+            (F::Sections, self.sections as f64),
+            (F::Points, self.points as f64),
+        ] {
+            field.check(v)?;
         }
         let lines = (self.width / self.step_over).round() as usize + 1;
         let per_line = (self.length / self.step).round() as usize + 1;
         if lines.saturating_mul(per_line) > 20_000_000 {
-            return bad(format!(
-                "program.step, program.step_over: {lines} x {per_line} nodes is more than 2e7"
-            ));
+            return Err(ScenarioError::Nodes { lines, per_line }.into());
         }
-        if self.iterations > 20 {
-            return bad(format!("loop.iterations = {}: at most 20", self.iterations));
-        }
+        F::Iterations.check(self.iterations as f64)?;
         if let Tool::Ball { radius } = self.tool {
-            let min_r = match self.shape {
+            let curvature = match self.shape {
                 Shape::Panel { radius_x, radius_y } => radius_x.min(radius_y),
                 Shape::NoseCone { .. } => f64::INFINITY,
             };
-            if radius >= min_r {
-                return bad(format!(
-                    "program.tool ball radius {radius} mm: must be below the surface's radius of curvature {min_r} mm"
-                ));
+            if !(radius.is_finite() && radius > 0.0) {
+                return Err(ScenarioError::Field {
+                    field: F::Tool,
+                    value: Given::Tool(self.tool),
+                    rule: Rule::BallRadius,
+                }
+                .into());
+            }
+            if radius >= curvature {
+                return Err(ScenarioError::BallRadius { radius, curvature }.into());
             }
         }
+        F::Gain.check(self.options.gain)?;
+        F::Margin.check(self.options.margin_mm)?;
         self.options.validate()
     }
 
@@ -253,11 +243,11 @@ impl Scenario {
     fn part(&self, feed: &[V3]) -> Result<Vec<V3>, CorrectError> {
         let (nx, ny) = self.raster();
         if feed.len() != nx * ny {
-            return Err(CorrectError::Scenario(format!(
-                "the program has {} feed nodes, the raster {}",
-                feed.len(),
-                nx * ny
-            )));
+            return Err(ScenarioError::Raster {
+                feed: feed.len(),
+                raster: nx * ny,
+            }
+            .into());
         }
         let mut centre = vec![[0.0; 3]; nx * ny];
         for (m, p) in feed.iter().enumerate() {
@@ -457,11 +447,7 @@ impl Scenario {
         let part0 = self.part(&read.1)?;
         let mut rows = Vec::new();
         for &count in section_counts {
-            if !(2..=10_000).contains(&count) {
-                return Err(CorrectError::Scenario(format!(
-                    "loop.section_study: {count} sections: allowed 2 to 10000"
-                )));
-            }
+            ScenarioField::SectionStudy.check(count as f64)?;
             let points = (((self.points - 1) as f64) * (count - 1) as f64
                 / (self.sections - 1).max(1) as f64)
                 .round()

@@ -4,9 +4,11 @@
 use std::path::Path;
 
 use formcam_correct::{
-    CorrectError, CorrectionJob, Corrector, Grid, Interpolation, JobField, Measurements,
-    MillingProgram, Options, ScenarioJob, Settings, Tool, correct_program,
+    CORRECT, CorrectError, CorrectionJob, Corrector, Given, Grid, Interpolation, JobField,
+    Measurements, MillingProgram, Options, Rule, SCENARIO_JOB, ScenarioError, ScenarioField,
+    ScenarioJob, Settings, Tool, correct_program,
 };
+use formcam_schema::Default as Preset;
 
 fn examples() -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
@@ -75,7 +77,27 @@ fn job_errors_name_the_field_and_the_range() {
             "dialect = \"heidenhain\"",
             "correct.dialect = \"heidenhain\"",
         ),
-        ("speed = 3.0", "unknown field `speed`"),
+        (
+            "dialect = \"cldata\"",
+            "correct.dialect = \"cldata\": allowed iso, fanuc, sinumerik-840d",
+        ),
+        (
+            "points_per_section = 1",
+            "correct.points_per_section = 1: allowed [2, 100000]",
+        ),
+        (
+            "points_per_section = 100001",
+            "correct.points_per_section = 100001: allowed [2, 100000]",
+        ),
+        ("gain = nan", "correct.gain = NaN: allowed (0, 2]"),
+        (
+            "speed = 3.0",
+            "correct.speed at 4:1: unknown field `speed`; allowed: measurements, program",
+        ),
+        (
+            "gain = \"high\"",
+            "correct.gain at 4:8: expected a number (0, 2]",
+        ),
     ] {
         let e = job(extra).unwrap_err().to_string();
         assert!(e.starts_with(want), "{extra}: {e}");
@@ -90,6 +112,75 @@ fn job_errors_name_the_field_and_the_range() {
             ..
         })
     ));
+}
+
+/// A value just outside an end of a range: below a lower end, above an
+/// upper one (the end itself where it is open).
+fn outside(b: formcam_schema::Bound, below: bool) -> f64 {
+    let step = if below { -1.0 } else { 1.0 };
+    if b.closed { b.value + step } else { b.value }
+}
+
+#[test]
+fn every_range_of_the_job_refuses_its_outside_naming_the_field_and_the_range() {
+    let mut checked = 0;
+    for f in CORRECT.fields {
+        let Some(range) = f.range else { continue };
+        let field = JobField::from_key(f.name).unwrap();
+        let ends = [(range.min, true), (range.max, false)];
+        for (end, below) in ends {
+            let Some(b) = end else { continue };
+            let v = outside(b, below);
+            let written = if matches!(f.kind, formcam_schema::Kind::Integer) {
+                format!("{v}")
+            } else {
+                format!("{v:?}")
+            };
+            let e = job(&format!("{} = {written}", f.name)).unwrap_err();
+            let rule = Rule::Range {
+                range,
+                unit: f.unit,
+            };
+            assert_eq!(
+                e,
+                CorrectError::Field {
+                    field,
+                    value: Given::Number(v),
+                    rule: rule.clone(),
+                },
+                "{}",
+                f.name
+            );
+            // The words: the field, the value as a number, the range and unit.
+            let want = format!("correct.{} = {v}: {rule}", f.name);
+            assert_eq!(e.to_string(), want);
+            assert!(want.contains(&range.to_string()), "{want}");
+            checked += 1;
+        }
+        assert!(matches!(f.default, Preset::Value(_) | Preset::Described(_)));
+    }
+    // gain (both ends), margin, noise, arc tolerance, points per section
+    // (both ends), longest segment, largest deviation.
+    assert_eq!(checked, 9);
+}
+
+#[test]
+fn settings_checked_in_code_say_what_the_job_file_says() {
+    // The same value refused from a job file and from settings made in code
+    // (the command line's way in) carries the same field, value and rule.
+    type Set = fn(&mut Settings);
+    let cases: [(&str, Set); 5] = [
+        ("gain = 0.0", |s| s.options.gain = 0.0),
+        ("margin_mm = -1.0", |s| s.options.margin_mm = -1.0),
+        ("noise_mm = -0.1", |s| s.noise_mm = -0.1),
+        ("points_per_section = 1", |s| s.points_per_section = Some(1)),
+        ("max_deviation_mm = 0.0", |s| s.max_deviation_mm = 0.0),
+    ];
+    for (extra, set) in cases {
+        let mut s = Settings::default();
+        set(&mut s);
+        assert_eq!(s.check(), Err(job(extra).unwrap_err()), "{extra}");
+    }
 }
 
 #[test]
@@ -134,6 +225,75 @@ fn the_scenario_file_reads_and_names_bad_fields() {
         let e = ScenarioJob::from_toml(&text.replacen(from, to, 1)).unwrap_err();
         assert!(e.to_string().contains(want), "{to}: {e}");
     }
+}
+
+#[test]
+fn scenario_fields_out_of_range_name_the_field_in_the_words_of_the_check() {
+    let text = std::fs::read_to_string(examples().join("correct-panel-loop.toml")).unwrap();
+    for (from, to, field, value) in [
+        ("step = 1.0", "step = 0.0", ScenarioField::Step, 0.0),
+        (
+            "sections = 17",
+            "sections = 1",
+            ScenarioField::Sections,
+            1.0,
+        ),
+        (
+            "iterations = 3",
+            "iterations = 21",
+            ScenarioField::Iterations,
+            21.0,
+        ),
+        ("gain = 1.0", "gain = 3.0", ScenarioField::Gain, 3.0),
+        ("[3, 5, 9", "[3, 1, 9", ScenarioField::SectionStudy, 1.0),
+        (
+            "amplitude = 0.4",
+            "amplitude = -0.4",
+            ScenarioField::Amplitude,
+            -0.4,
+        ),
+    ] {
+        let e = ScenarioJob::from_toml(&text.replacen(from, to, 1)).unwrap_err();
+        let f = field.described().unwrap();
+        let rule = Rule::Range {
+            range: f.range.unwrap(),
+            unit: f.unit,
+        };
+        assert_eq!(
+            e,
+            CorrectError::Scenario(ScenarioError::Field {
+                field,
+                value: Given::Number(value),
+                rule: rule.clone(),
+            }),
+            "{to}"
+        );
+        // The scenario checked in code refuses it in the same words.
+        let (table, key) = field.path();
+        assert!(
+            SCENARIO_JOB
+                .table(table)
+                .and_then(|t| t.field(key))
+                .is_some()
+        );
+        assert_eq!(e.to_string(), format!("{table}.{key} = {value}: {rule}"));
+    }
+    let s = ScenarioJob::from_toml(&text).unwrap();
+    let mut loose = s.scenario.clone();
+    loose.step = 0.0;
+    assert_eq!(
+        loose.validate().unwrap_err().to_string(),
+        "program.step = 0: must be > 0 mm"
+    );
+    // A radius the surface's kind needs, left out, and an unknown field.
+    let e = ScenarioJob::from_toml(&text.replacen("radius_y = 900.0", "", 1)).unwrap_err();
+    let e = e.to_string();
+    assert!(
+        e.starts_with("surface.radius_y: missing") && e.contains("(required when kind = panel)"),
+        "{e}"
+    );
+    let e = ScenarioJob::from_toml(&text.replacen("seed = 1", "sed = 1", 1)).unwrap_err();
+    assert!(e.to_string().starts_with("cmm.sed at "), "{e}");
 }
 
 /// A flat plate z = 0 measured in 3 sections x 4 points, everything `dz`

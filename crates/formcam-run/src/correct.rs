@@ -11,8 +11,8 @@ use std::path::{Path, PathBuf};
 
 use formcam_correct::simulate::LoopResult;
 use formcam_correct::{
-    CorrectError, Correction, CorrectionJob, Grid, JobField, Measurements, MillingProgram,
-    ScenarioJob, correct_program_with,
+    CorrectError, Correction, CorrectionJob, Given, Grid, JobField, Measurements, MillingProgram,
+    Rule, ScenarioError, ScenarioJob, correct_program_with,
 };
 use formcam_plot::{convergence_svg, deviations_svg, displacement_svg};
 use formcam_progress::{Phase, Progress, Silent, Step};
@@ -32,15 +32,16 @@ pub enum CorrectRunError {
         /// Why.
         source: CorrectError,
     },
-    /// An option of the command line out of range.
+    /// An option of the command line out of range: the same rule as the
+    /// job file's field (`--gain 0: allowed (0, 2]`).
     #[error("--{flag} {value}: {rule}")]
     Flag {
         /// The option's name (without `--`).
         flag: &'static str,
         /// Its value as given.
-        value: String,
-        /// What is allowed.
-        rule: String,
+        value: Given,
+        /// What it breaks.
+        rule: Rule,
     },
     /// A measured deviation beyond the plausible limit.
     #[error(
@@ -321,7 +322,7 @@ fn failure(e: CorrectError, job: &CorrectionJob, form: Form<'_>) -> CorrectRunEr
                 source: e,
             }
         }
-        (e @ CorrectError::Program(_), _) => CorrectRunError::File {
+        (e @ (CorrectError::Program(_) | CorrectError::Nc(_)), _) => CorrectRunError::File {
             path: job.program.clone(),
             source: e,
         },
@@ -439,7 +440,7 @@ pub fn correct_simulate_with(
     };
     progress.checkpoint(Step::new(Phase::Files, 0, 1))?;
     let (Some(first), Some(last)) = (result.rounds.first(), result.rounds.last()) else {
-        return Err(at(CorrectError::Scenario("the loop ran no round".into())).into());
+        return Err(at(ScenarioError::NoRound.into()).into());
     };
     let mut files = Vec::new();
     let mut rounds = Vec::new();

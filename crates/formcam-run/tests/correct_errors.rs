@@ -115,3 +115,60 @@ fn a_displacement_beyond_the_limit_names_the_program_line() {
     settings.max_deviation_mm = 7.0;
     assert!(correct(&job(m, p, settings), Path::new("c.nc"), None).is_ok());
 }
+
+#[test]
+fn a_range_is_refused_in_the_same_words_from_a_job_file_and_an_option() {
+    let dir = scratch("same-words");
+    let m = plate(&dir, &[0.0, 40.0, 80.0, 120.0], |_| 0.1);
+    let p = plate_program(&dir);
+    let job_file = dir.join("job.toml");
+    type Set = fn(&mut Settings);
+    let cases: [(&str, &str, Set); 7] = [
+        ("gain = 0.0", "--gain 0", |s| s.options.gain = 0.0),
+        ("gain = 2.5", "--gain 2.5", |s| s.options.gain = 2.5),
+        ("margin_mm = -1.0", "--margin -1", |s| {
+            s.options.margin_mm = -1.0
+        }),
+        ("noise_mm = -0.5", "--noise -0.5", |s| s.noise_mm = -0.5),
+        ("arc_tolerance_mm = 0.0", "--arc-tolerance 0", |s| {
+            s.arc_tolerance_mm = 0.0
+        }),
+        ("points_per_section = 1", "--points-per-section 1", |s| {
+            s.points_per_section = Some(1)
+        }),
+        ("max_deviation_mm = 0.0", "--max-deviation 0", |s| {
+            s.max_deviation_mm = 0.0
+        }),
+    ];
+    for (line, flag, set) in cases {
+        let mut settings = Settings::default();
+        set(&mut settings);
+        let by_flag = refused(&job(m.clone(), p.clone(), settings), Path::new("x.nc"));
+        let text = format!(
+            "[correct]\nmeasurements = \"{}\"\nprogram = \"{}\"\n{line}\n",
+            m.display(),
+            p.display()
+        );
+        let by_job = match formcam_run::correct_job(&job_file, &text, &dir.join("out")) {
+            Ok(_) => panic!("{line}: accepted"),
+            Err(e) => e.to_string(),
+        };
+        // The job names its file and field, never the option; the option
+        // names itself; the rule after the value is one text.
+        let key = line.split(" = ").next().unwrap();
+        let field = format!("{}: correct.{key} = ", job_file.display());
+        assert!(by_job.starts_with(&field), "{line}: {by_job}");
+        assert!(!by_job.contains("--"), "{line}: {by_job}");
+        assert!(
+            by_flag.starts_with(&format!("{flag}: ")),
+            "{line}: {by_flag}"
+        );
+        let rule_of = |e: &str| e.split_once(": ").map(|(_, r)| r.to_string());
+        let job_rule = by_job[field.len()..].split_once(": ").map(|(_, r)| r);
+        assert_eq!(job_rule, rule_of(&by_flag).as_deref(), "{line}");
+        assert!(
+            job_rule.is_some_and(|r| r.starts_with("allowed ") || r.starts_with("must be ")),
+            "{line}: {by_job}"
+        );
+    }
+}

@@ -123,6 +123,9 @@ pub enum Kind {
     NumberOrWord(&'static [&'static str]),
     /// A list of words, each from the list (`allow = ["slack"]`).
     Words(&'static [&'static str]),
+    /// A list of whole numbers, each in the field's range
+    /// (`section_study = [3, 5, 9]`).
+    Integers,
     /// A list of tables with these fields (`mu_segments = [{ ... }]`).
     Tables(&'static [Field]),
 }
@@ -140,6 +143,7 @@ impl Kind {
             Kind::Name(_) => "word (any case)".into(),
             Kind::NumberOrWord(_) => "number or word".into(),
             Kind::Words(_) => "list of words".into(),
+            Kind::Integers => "list of integers".into(),
             Kind::Tables(fields) => format!(
                 "list of tables ({})",
                 fields.iter().map(|f| f.name).collect::<Vec<_>>().join(", ")

@@ -414,6 +414,28 @@ impl Checker<'_> {
                     }
                 }
             }
+            (Kind::Integers, Item::Value(Toml::Array(a))) => {
+                for (i, v) in a.iter().enumerate() {
+                    let path = format!("{dotted}[{}]", i + 1);
+                    let at = start(v.span()).unwrap_or(at);
+                    match v {
+                        Toml::Integer(n) => {
+                            self.number(&path, f, *n.value() as f64, n.to_string().trim(), at)
+                        }
+                        other => {
+                            let found = type_name(&Item::Value(other.clone()));
+                            let expected = format!("an integer {}", allowed_numbers(f));
+                            self.push(at, |line, column| SchemaError::WrongType {
+                                field: path,
+                                line,
+                                column,
+                                expected,
+                                found,
+                            });
+                        }
+                    }
+                }
+            }
             (Kind::Tables(sub), Item::Value(Toml::Array(a))) => {
                 self.inline_tables(dotted, sub, a, at)
             }
@@ -492,6 +514,7 @@ fn expected(f: &Field) -> String {
         Kind::Word(words) => format!("one of {}", quoted(words)),
         Kind::Name(words) => format!("one of {} (any case)", quoted(words)),
         Kind::Words(words) => format!("a list of words from {}", quoted(words)),
+        Kind::Integers => format!("a list of integers {}", allowed_numbers(f)),
         Kind::Boolean => "true or false".into(),
         Kind::Text => "text".into(),
         Kind::File => "a file name (text)".into(),

@@ -267,3 +267,43 @@ fn the_description_serialises_to_json() {
     assert_eq!(shape["fields"][0]["kind"]["of"][1], "ring");
     assert_eq!(shape["fields"][2]["default"]["value"], 10);
 }
+
+#[test]
+fn a_list_of_integers_checks_each_entry_against_the_range() {
+    const STUDY: JobSchema = JobSchema {
+        name: "study",
+        help: "a study",
+        tables: &[Table {
+            name: "loop",
+            repeat: Repeat::Single,
+            required: true,
+            help: "the loop",
+            fields: &[Field {
+                name: "counts",
+                kind: Kind::Integers,
+                unit: Unit::None,
+                range: Some(Range::closed(2.0, 10.0)),
+                default: Default::Value(Value::EmptyList(EmptyList)),
+                help: "section counts",
+            }],
+        }],
+    };
+    assert_eq!(validate(&STUDY, "[loop]\ncounts = [2, 5, 10]\n"), Ok(()));
+    assert_eq!(validate(&STUDY, "[loop]\n"), Ok(()));
+    let e = validate(&STUDY, "[loop]\ncounts = [2, 11]\n").unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "loop.counts[2] = 11 at 2:14: out of range; allowed [2, 10]"
+    );
+    let e = validate(&STUDY, "[loop]\ncounts = [2, 3.5]\n").unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "loop.counts[2] at 2:14: expected an integer [2, 10], found a float"
+    );
+    let e = validate(&STUDY, "[loop]\ncounts = 3\n").unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("loop.counts at 2:10: expected a list of integers"),
+        "{e}"
+    );
+}

@@ -839,6 +839,16 @@ mod tests {
                 proptest::prop_assert!(
                     (fast.shorter_edge2(i, j) - slow.shorter_edge2(i, j)).abs() <= 1e-12
                 );
+                // The centre's jet kept in the record, where every foot
+                // starts, and the deviation's value alone: the very bits.
+                let (a, b) = (fast.centre(i, j), slow.bilinear(i, j, 0.5, 0.5));
+                for (x, y) in [(a.f, b.f), (a.fs, b.fs), (a.ft, b.ft), (a.fst, b.fst)] {
+                    proptest::prop_assert_eq!(x.map(f64::to_bits), y.map(f64::to_bits));
+                }
+                proptest::prop_assert_eq!(
+                    fast.deviation_value(i, j, s, t).map(f64::to_bits),
+                    fast.deviation(i, j, s, t).0.map(f64::to_bits)
+                );
             }
         }
     }

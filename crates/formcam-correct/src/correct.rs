@@ -353,8 +353,13 @@ impl<'g> Corrector<'g> {
         let displacement = match placement {
             Placement::Outside | Placement::Unknown => [0.0; 3],
             _ => {
-                let (d0, ds, dt) = self.surface.deviation(i, j, s, t);
-                let d = axpy(axpy(d0, ext.0 - s, ds), ext.1 - t, dt);
+                let d = if placement == Placement::Inside {
+                    // At the foot itself: the slopes would be added times 0.
+                    self.surface.deviation_value(i, j, s, t)
+                } else {
+                    let (d0, ds, dt) = self.surface.deviation(i, j, s, t);
+                    axpy(axpy(d0, ext.0 - s, ds), ext.1 - t, dt)
+                };
                 let k = -self.options.gain;
                 match self.options.tool {
                     Tool::Point => scale(d, k),

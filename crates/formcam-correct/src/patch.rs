@@ -191,6 +191,19 @@ fn contract(c: &[[V3; 4]; 4], bs: &[f64; 4], bt: &[f64; 4]) -> V3 {
 /// `[P00, P01, e0, e1, e1 - e0]`, `e0 = P10 - P00`, `e1 = P11 - P01`.
 type Linear = [V3; 5];
 
+/// A facet of the nominal surface: its bilinear form with what every foot
+/// of the normal on it starts from, computed once.
+#[derive(Debug, Clone, Copy)]
+struct Nominal {
+    /// The bilinear form.
+    form: Linear,
+    /// `F`, `F_s`, `F_t` at the facet's centre `(0.5, 0.5)`, where the
+    /// foot's Newton starts: [`eval_linear`] there, so the same bits.
+    centre: [V3; 3],
+    /// The squared length of the shorter of the edges from corner `00`.
+    shorter_edge2: f64,
+}
+
 /// A facet's 16 Hermite coefficients ([`Field::coefficients`]) side by side.
 type Cubic = [[V3; 4]; 4];
 
@@ -206,6 +219,24 @@ fn linear_cells(v: &[V3], nu: usize, nv: usize) -> Vec<Linear> {
         }
     }
     out
+}
+
+/// The nominal surface's facets: each bilinear form with its centre's jet
+/// and its shorter edge.
+fn nominal_cells(v: &[V3], nu: usize, nv: usize) -> Vec<Nominal> {
+    linear_cells(v, nu, nv)
+        .into_iter()
+        .map(|form| {
+            let (f, fs, ft, _) = eval_linear(&form, 0.5, 0.5);
+            let [p00, p01, a, _, _] = form;
+            let b = sub(p01, p00);
+            Nominal {
+                form,
+                centre: [f, fs, ft],
+                shorter_edge2: dot(a, a).min(dot(b, b)),
+            }
+        })
+        .collect()
 }
 
 /// A facet's bilinear form at `(s, t)`: value, `d/ds`, `d/dt`, `d2/ds dt`,
@@ -320,8 +351,9 @@ pub struct Surface<'g> {
     grid: &'g Grid,
     kind: Interpolation,
     /// The nominal surface's bilinear forms (both kinds: the bicubic foot
-    /// starts from the bilinear one, extrapolation continues it).
-    linear: Vec<Linear>,
+    /// starts from the bilinear one, extrapolation continues it), with the
+    /// jet at each facet's centre.
+    linear: Vec<Nominal>,
     patches: Patches,
 }
 
@@ -341,7 +373,7 @@ impl<'g> Surface<'g> {
         Self {
             grid,
             kind,
-            linear: linear_cells(&grid.nominal, nu, nv),
+            linear: nominal_cells(&grid.nominal, nu, nv),
             patches,
         }
     }
@@ -399,9 +431,27 @@ impl<'g> Surface<'g> {
             );
             return dot(a, a).min(dot(b, b));
         }
-        let [p00, p01, a, _, _] = self.linear[self.cell(i, j)];
-        let b = sub(p01, p00);
-        dot(a, a).min(dot(b, b))
+        self.linear[self.cell(i, j)].shorter_edge2
+    }
+
+    /// The bilinear patch of facet `(i, j)` at its centre `(0.5, 0.5)`, where
+    /// every foot's Newton starts: the record's, so not evaluated per node.
+    #[inline(always)]
+    fn centre(&self, i: usize, j: usize) -> Jet {
+        #[cfg(test)]
+        if let Patches::Reference { .. } = self.patches {
+            return self.bilinear(i, j, 0.5, 0.5);
+        }
+        let c = &self.linear[self.cell(i, j)];
+        let [f, fs, ft] = c.centre;
+        Jet {
+            f,
+            fs,
+            ft,
+            fss: [0.0; 3],
+            fst: c.form[4],
+            ftt: [0.0; 3],
+        }
     }
 
     /// The bilinear patch of facet `(i, j)` (used for extrapolation too).
@@ -426,7 +476,7 @@ impl<'g> Surface<'g> {
                 ftt: [0.0; 3],
             };
         }
-        let (f, fs, ft, fst) = eval_linear(&self.linear[self.cell(i, j)], s, t);
+        let (f, fs, ft, fst) = eval_linear(&self.linear[self.cell(i, j)].form, s, t);
         Jet {
             f,
             fs,
@@ -503,6 +553,20 @@ impl<'g> Surface<'g> {
         }
     }
 
+    /// The deviation interpolated on facet `(i, j)` at `(s, t)`: the value
+    /// of [`Self::deviation`] (the same operations), without the slopes.
+    #[inline(always)]
+    pub(crate) fn deviation_value(&self, i: usize, j: usize, s: f64, t: f64) -> V3 {
+        match &self.patches {
+            Patches::Bilinear { deviation } => eval_linear(&deviation[self.cell(i, j)], s, t).0,
+            Patches::Bicubic { deviation, .. } => {
+                eval_cubic_first(&deviation[self.cell(i, j)], s, t).0
+            }
+            #[cfg(test)]
+            Patches::Reference { .. } => self.deviation(i, j, s, t).0,
+        }
+    }
+
     /// The unit normal of facet `(i, j)` at `(s, t)`, turned toward `p`.
     pub(crate) fn normal_toward(&self, i: usize, j: usize, s: f64, t: f64, p: V3) -> V3 {
         let jet = self.jet(i, j, s, t);
@@ -521,16 +585,20 @@ impl<'g> Surface<'g> {
     /// bilinear form is continued beyond its edges (for extrapolation).
     pub(crate) fn foot(&self, i: usize, j: usize, p: V3, clamp: bool) -> Foot {
         let (lo, hi) = if clamp { (0.0, 1.0) } else { (-50.0, 51.0) };
-        let linear = newton::<false>(|s, t| self.bilinear(i, j, s, t), p, lo, hi, (0.5, 0.5));
+        let eval = |s, t| self.bilinear(i, j, s, t);
+        let linear = newton::<false>(eval, p, lo, hi, (0.5, 0.5, self.centre(i, j)));
         if !clamp || self.kind == Interpolation::Bilinear {
             return linear;
         }
         // Bicubic: from the bilinear foot, which is close.
-        newton::<true>(|s, t| self.jet(i, j, s, t), p, lo, hi, (linear.s, linear.t))
+        let eval = |s, t| self.jet(i, j, s, t);
+        let start = (linear.s, linear.t, eval(linear.s, linear.t));
+        newton::<true>(eval, p, lo, hi, start)
     }
 }
 
-/// Minimises `|F(s, t) - p|^2` over `[lo, hi]^2` from `start`: projected
+/// Minimises `|F(s, t) - p|^2` over `[lo, hi]^2` from `start` (`s`, `t`
+/// and `F`'s jet there, which the caller may have at hand): projected
 /// Newton, Gauss–Newton where the Hessian is not positive definite, a
 /// halving line search keeping every step a descent. Without `CURVED` the
 /// patch is bilinear (`fss = ftt = 0`) and `r . fss`, `r . ftt` are left
@@ -541,10 +609,9 @@ fn newton<const CURVED: bool>(
     p: V3,
     lo: f64,
     hi: f64,
-    start: (f64, f64),
+    start: (f64, f64, Jet),
 ) -> Foot {
-    let (mut s, mut t) = start;
-    let mut jet = eval(s, t);
+    let (mut s, mut t, mut jet) = start;
     let mut r = sub(jet.f, p);
     let mut f = dot(r, r);
     for _ in 0..40 {
@@ -772,6 +839,16 @@ mod tests {
                 );
                 proptest::prop_assert!(
                     (fast.shorter_edge2(i, j) - slow.shorter_edge2(i, j)).abs() <= 1e-12
+                );
+                // The centre's jet kept in the record, where every foot
+                // starts, and the deviation's value alone: the very bits.
+                let (a, b) = (fast.centre(i, j), slow.bilinear(i, j, 0.5, 0.5));
+                for (x, y) in [(a.f, b.f), (a.fs, b.fs), (a.ft, b.ft), (a.fst, b.fst)] {
+                    proptest::prop_assert_eq!(x.map(f64::to_bits), y.map(f64::to_bits));
+                }
+                proptest::prop_assert_eq!(
+                    fast.deviation_value(i, j, s, t).map(f64::to_bits),
+                    fast.deviation(i, j, s, t).0.map(f64::to_bits)
                 );
             }
         }

@@ -410,3 +410,73 @@ fn nodes_beyond_the_edge_in_plan_stay_outside() {
         assert_eq!(c.displacement, [0.0; 3]);
     }
 }
+
+#[test]
+fn the_corrections_are_the_same_bits_whatever_the_number_of_threads() {
+    // A curved, twisted panel with a smooth warp and a zig-zag raster of
+    // 17 000 nodes (four whole runs of the walk and a part one) that
+    // reaches a little beyond its edges, corrected on pools of one, two and
+    // three threads: every displacement, foot and placement alike, bit for bit.
+    let f = |x: f64, y: f64| (x - 60.0).powi(2) / 300.0 + x * y / 2000.0 - (y / 40.0).sin();
+    let g = grid(31, 25, (4.0, 3.0), f, |x, y| {
+        [0.01 * (x / 30.0).sin(), 0.0, 0.2 * (y / 25.0).cos()]
+    });
+    let (rows, per_row) = (100, 170);
+    let mut raster = Vec::with_capacity(rows * per_row);
+    for k in 0..rows {
+        let y = -1.0 + 74.0 * k as f64 / (rows - 1) as f64;
+        for i in 0..per_row {
+            let i = if k % 2 == 0 { i } else { per_row - 1 - i };
+            let x = -2.0 + 124.0 * i as f64 / (per_row - 1) as f64;
+            raster.push([x, y, f(x, y) + 0.1]);
+        }
+    }
+    for kind in KINDS {
+        let corr = Corrector::new(
+            &g,
+            Options {
+                interpolation: kind,
+                margin_mm: 1.0,
+                ..Options::default()
+            },
+        )
+        .unwrap();
+        let on = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| corr.correct(&raster))
+        };
+        let one = on(1);
+        let bits = |c: &[formcam_correct::NodeCorrection]| -> Vec<[u64; 6]> {
+            c.iter()
+                .map(|c| {
+                    let d = c.displacement.map(f64::to_bits);
+                    [
+                        d[0],
+                        d[1],
+                        d[2],
+                        c.s.to_bits(),
+                        c.t.to_bits(),
+                        c.distance_mm.to_bits(),
+                    ]
+                })
+                .collect()
+        };
+        let totals = Totals::of(&one);
+        assert!(
+            totals.corrected > raster.len() * 4 / 5,
+            "{kind:?}: {totals:?}"
+        );
+        assert!(
+            totals.outside > 0 && totals.extrapolated > 0,
+            "{kind:?}: {totals:?}"
+        );
+        for threads in [2, 3] {
+            let many = on(threads);
+            assert_eq!(one, many, "{kind:?} on {threads} threads");
+            assert_eq!(bits(&one), bits(&many), "{kind:?} on {threads} threads");
+        }
+    }
+}

@@ -209,6 +209,7 @@ pub fn correct_job_with(
         progress,
     )?;
     run.files.push(ResultFile::new("report.json", report));
+    run.inputs.insert(0, path.to_path_buf());
     Ok(run)
 }
 
@@ -266,6 +267,7 @@ fn correct_to(
             files,
             line,
             warnings: Vec::new(),
+            inputs: vec![job.measurements.clone(), job.program.clone()],
         },
         report,
     ))
@@ -506,6 +508,7 @@ pub fn correct_simulate_with(
         files,
         line: loop_line(out_dir, &result),
         warnings: Vec::new(),
+        inputs: vec![path.to_path_buf()],
     })
 }
 

@@ -14,7 +14,7 @@ use formcam_nc::Dialect;
 use formcam_run::{History, RunOutput};
 
 use crate::CliError;
-use crate::output::{write_all, write_run};
+use crate::output::{write_files, write_run};
 use crate::progress::with_bar;
 
 /// Options of `formcam correct`.
@@ -86,23 +86,8 @@ pub(crate) fn read_text(path: &Path) -> Result<String, CliError> {
     })
 }
 
-/// `path` made absolute through its folder (the file itself need not exist).
-fn resolved(path: &Path) -> Option<PathBuf> {
-    if let Ok(p) = fs::canonicalize(path) {
-        return Some(p);
-    }
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    Some(fs::canonicalize(dir).ok()?.join(path.file_name()?))
-}
-
 fn same_file(a: &Path, b: &Path) -> bool {
-    match (resolved(a), resolved(b)) {
-        (Some(x), Some(y)) => x == y,
-        _ => false,
-    }
+    formcam_files::same_file(a, b)
 }
 
 /// Runs `formcam correct` (a job file, or the options on the command line);
@@ -166,14 +151,24 @@ fn run_args(a: &CorrectArgs) -> Result<String, CliError> {
         None => None,
     };
     let done = with_bar(|p| formcam_run::correct_with(&job, &out_path, history.as_ref(), p))?;
-    write_run(&formcam_run::output_folder(&out_path), &done.run)?;
-    if let (Some(rp), Some(report)) = (&a.report, done.report) {
-        let name = rp
-            .file_name()
-            .map(|f| f.to_string_lossy().into_owned())
-            .ok_or_else(|| CliError::NotFileName { path: rp.clone() })?;
-        write_all(&formcam_run::output_folder(rp), &[(name, report)])?;
+    // The side files first, the report next, the program last: a report
+    // that cannot be written stops the run before the program is in place.
+    let folder = formcam_run::output_folder(&out_path);
+    let program = out_path.file_name().map(|n| n.to_string_lossy());
+    let (main, side): (Vec<_>, Vec<_>) = done
+        .run
+        .files
+        .iter()
+        .partition(|f| program.as_deref() == Some(f.name.as_str()));
+    let mut files: Vec<(PathBuf, &[u8])> = side
+        .iter()
+        .map(|f| (folder.join(&f.name), f.bytes.as_slice()))
+        .collect();
+    if let (Some(rp), Some(report)) = (&a.report, &done.report) {
+        files.push((rp.clone(), report.as_slice()));
     }
+    files.extend(main.iter().map(|f| (out_path.clone(), f.bytes.as_slice())));
+    write_files(&files, &done.run.inputs)?;
     Ok(done.run.line)
 }
 

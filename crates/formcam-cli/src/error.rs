@@ -71,34 +71,10 @@ pub enum CliError {
         /// The column's name.
         column: String,
     },
-    /// An output path that names no file.
-    #[error("{}: not a file name", path.display())]
-    NotFileName {
-        /// The path.
-        path: PathBuf,
-    },
-    /// The output folder could not be created.
-    #[error("{}: cannot create the output folder: {source}", path.display())]
-    OutputFolder {
-        /// The folder.
-        path: PathBuf,
-        /// The reason.
-        source: io::Error,
-    },
-    /// An output file could not be written.
-    #[error("{}: cannot write: {source}", path.display())]
-    Output {
-        /// The file.
-        path: PathBuf,
-        /// The reason.
-        source: io::Error,
-    },
-    /// A folder stands where an output file goes.
-    #[error("{}: cannot write: a folder is in the way", path.display())]
-    FolderInTheWay {
-        /// The target.
-        path: PathBuf,
-    },
+    /// The outputs could not be written (an input in the way, a folder
+    /// formcam did not write, another run writing there, the file system).
+    #[error(transparent)]
+    Write(#[from] formcam_files::WriteError),
     /// An output that would land on an input of the command.
     #[error("{}: {flag} would overwrite the input {what}; give another {flag}", path.display())]
     Refused {

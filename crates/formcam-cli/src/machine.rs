@@ -7,7 +7,7 @@ use std::path::Path;
 use formcam_machine::Machine;
 
 use crate::CliError;
-use crate::output::write_all;
+use crate::output::write_files;
 
 /// Reads a machine file; errors name the file, the link or point, and the field.
 pub fn load(path: &Path) -> Result<Machine, CliError> {
@@ -129,17 +129,10 @@ pub fn fk(machine: &Path, axes: &Path, out: &Path) -> Result<String, CliError> {
         }
         let _ = writeln!(s, "{}", cells.join(","));
     }
-    let dir = out
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = out
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .ok_or_else(|| CliError::NotFileName {
-            path: out.to_path_buf(),
-        })?;
-    write_all(dir, &[(name.as_str(), s.into_bytes())])?;
+    write_files(
+        &[(out.to_path_buf(), s.as_bytes())],
+        &[machine.to_path_buf(), axes.to_path_buf()],
+    )?;
     Ok(format!(
         "{}: {} rows, {} key points -> {}",
         m.name,

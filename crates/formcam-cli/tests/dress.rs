@@ -63,6 +63,7 @@ fn the_seed_job_writes_its_files() {
     assert_eq!(
         names,
         [
+            ".formcam-run",
             "contour_final.csv",
             "contour_initial.csv",
             "dresser.csv",

@@ -7,3 +7,7 @@
 mod quote;
 mod read;
 mod write;
+
+pub use write::{
+    Hook, MARKER, Point, WriteError, Writer, resolve, same_file, write_files, write_folder,
+};

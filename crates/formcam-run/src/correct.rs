@@ -210,6 +210,7 @@ pub fn correct_job_with(
         progress,
     )?;
     run.files.push(ResultFile::new("report.json", report));
+    run.inputs.insert(0, path.to_path_buf());
     Ok(run)
 }
 
@@ -267,6 +268,7 @@ fn correct_to(
             files,
             line,
             warnings: Vec::new(),
+            inputs: vec![job.measurements.clone(), job.program.clone()],
         },
         report,
     ))
@@ -507,6 +509,7 @@ pub fn correct_simulate_with(
         files,
         line: loop_line(out_dir, &result),
         warnings: Vec::new(),
+        inputs: vec![path.to_path_buf()],
     })
 }
 

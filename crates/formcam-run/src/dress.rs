@@ -50,8 +50,14 @@ pub fn dress_text_with(
     let t0 = Instant::now();
     let parsed = DressJob::from_toml(text).map_err(|e| job_error(job, e))?;
     let warnings = parsed.warnings();
+    let mut inputs = vec![job.to_path_buf()];
     let initial = match &parsed.process.initial_contour {
-        Some(file) => Some(read_initial(&resolve(job, file))?),
+        Some(file) => {
+            let path = resolve(job, file);
+            let contour = read_initial(&path)?;
+            inputs.push(path);
+            Some(contour)
+        }
         None => None,
     };
     let spec = parsed.spec(initial).map_err(|e| job_error(job, e))?;
@@ -99,6 +105,7 @@ pub fn dress_text_with(
         files,
         line,
         warnings,
+        inputs,
     })
 }
 

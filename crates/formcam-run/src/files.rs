@@ -1,4 +1,7 @@
-//! The files a run produces, held in memory until the caller writes them.
+//! The files a run produces, held in memory until the caller writes them,
+//! and the files it read (which no output may overwrite).
+
+use std::path::PathBuf;
 
 /// One file of a run's result: its name inside the output folder and its
 /// contents.
@@ -32,6 +35,10 @@ pub struct RunOutput {
     /// Values the job allows but that look wrong (a unit, most likely), one
     /// line each naming the field; shown before `line`.
     pub warnings: Vec<String>,
+    /// Every file the run read (the job and each file it names: machine,
+    /// meridian, eye curve, template, measurements, program, contour), as
+    /// the run opened them; the writer refuses an output on any of them.
+    pub inputs: Vec<PathBuf>,
 }
 
 impl RunOutput {

@@ -114,6 +114,7 @@ pub fn dressing_for(path: &Path, out: &Path, run: RunOutput) -> RunOutput {
             .collect(),
         line: format!("{} -> {}", run.line, out.display()),
         files: run.files,
+        inputs: run.inputs,
     }
 }
 
@@ -176,6 +177,7 @@ mod tests {
             files: Vec::new(),
             line: "dressed".into(),
             warnings: vec!["wheel.r: small".into()],
+            inputs: Vec::new(),
         };
         let shown = dressing_for(Path::new("d.toml"), Path::new("out/d"), run);
         assert_eq!(

@@ -5,15 +5,15 @@
 //! multi-layer job (and a `.wind` document) writes them per layer.
 
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use formcam_machine::AxisTrack;
 use formcam_machine::BandPassed;
 use formcam_machine::Machine;
 use formcam_program::{
-    Assembled, Check, MachineSource, ProgramError, Stage, WindJob, Wound, WoundLayer, WoundProgram,
-    nc, plan_until_with, write_program,
+    Assembled, Check, MachineSource, Post, ProgramError, Stage, WindJob, Wound, WoundLayer,
+    WoundProgram, nc, plan_until_with, write_program,
 };
 use formcam_progress::{Phase, Progress, Silent, Step};
 use formcam_winding::Layer;
@@ -38,7 +38,9 @@ pub fn wind_with(
 ) -> Result<RunOutput, RunError> {
     let t0 = Instant::now();
     let wj = read_job(job)?;
-    run(job, out, &wj, stage, t0, progress)
+    let mut output = run(job, out, &wj, stage, t0, progress)?;
+    output.inputs = job_inputs(job, &wj);
+    Ok(output)
 }
 
 /// The job at `job` run as far as its tables reach (the demo's rule, see
@@ -55,7 +57,31 @@ pub fn wind_furthest_with(
 ) -> Result<RunOutput, RunError> {
     let t0 = Instant::now();
     let wj = read_job(job)?;
-    run(job, out, &wj, wj.furthest_stage(), t0, progress)
+    let mut output = run(job, out, &wj, wj.furthest_stage(), t0, progress)?;
+    output.inputs = job_inputs(job, &wj);
+    Ok(output)
+}
+
+/// The files a winding job at `path` reads: itself, its machine file, the
+/// mandrel's meridian table, the eye's curve and the post's template.
+fn job_inputs(path: &Path, job: &WindJob) -> Vec<PathBuf> {
+    let machine = job.machine.as_ref().and_then(|m| match &m.source {
+        MachineSource::File(f) => Some(f.as_str()),
+        MachineSource::Shipped(_) => None,
+    });
+    let template = match &job.post {
+        Some(Post::Template { file, .. }) => Some(file.as_str()),
+        _ => None,
+    };
+    let named = [
+        machine,
+        job.mandrel.file.as_deref(),
+        job.eye.as_ref().and_then(|e| e.curve.as_deref()),
+        template,
+    ];
+    std::iter::once(path.to_path_buf())
+        .chain(named.into_iter().flatten().map(|f| job.base_dir.join(f)))
+        .collect()
 }
 
 /// `formcam wind JOB.wind -o OUT`: a Cyclone/FiberPath `.wind` job on the
@@ -87,6 +113,7 @@ pub fn wind_file_with(
         .map_err(|e| RunError::wind(path, e))?
         .named(path);
     let mut output = run(path, out, &wj, Stage::Program, t0, progress)?;
+    output.inputs = vec![path.to_path_buf()];
     if let Some(w) = &wj.wind_file {
         let _ = write!(
             output.line,

@@ -159,6 +159,8 @@ fn an_initial_contour_reads_with_the_new_and_the_old_header() {
         dress(&job).unwrap()
     };
     let zx = write("z,x", false);
+    // The run names the files it read: the job and the contour.
+    assert_eq!(zx.inputs, vec![job.clone(), dir.join("worn.csv")]);
     let s = summary(&zx);
     assert!(s["area_identity_rel_error"].as_f64().unwrap().abs() < 1e-9);
     let initial = text(&zx, "contour_initial.csv");

@@ -132,3 +132,39 @@ fn an_unreadable_job_names_its_file() {
         "{err}"
     );
 }
+
+/// Each run names every file it read, the job first, so that the writer
+/// can refuse an output on any of them.
+#[test]
+fn each_run_names_the_files_it_read() {
+    let ex = examples();
+    let ends = |run: &RunOutput, want: &[&str]| {
+        let got: Vec<String> = run
+            .inputs
+            .iter()
+            .map(|p| p.to_string_lossy().replace('\\', "/"))
+            .collect();
+        assert_eq!(got.len(), want.len(), "{got:?}");
+        for (g, w) in got.iter().zip(want) {
+            assert!(g.ends_with(w), "{g} is not {w}");
+        }
+    };
+    let run = run_job_file(&ex.join("vessel-program-840d.toml"), Path::new("o")).unwrap();
+    ends(
+        &run,
+        &["vessel-program-840d.toml", "../machines/winder-4axis.toml"],
+    );
+    let run = run_job_file(&ex.join("profile-waist.toml"), Path::new("o")).unwrap();
+    ends(&run, &["profile-waist.toml", "waist-meridian.csv"]);
+    let run = run_job_file(&ex.join("vessel-eye-curve.toml"), Path::new("o")).unwrap();
+    ends(&run, &["vessel-eye-curve.toml", "eye-curve.csv"]);
+    let run = run_job_file(&ex.join("tube-fiberpath.wind"), Path::new("o")).unwrap();
+    ends(&run, &["tube-fiberpath.wind"]);
+    let run = run_job_file(&ex.join("correct-mould.toml"), Path::new("o")).unwrap();
+    ends(
+        &run,
+        &["correct-mould.toml", "correct/cmm.csv", "correct/mould.nc"],
+    );
+    let run = run_job_file(&ex.join("correct-panel-loop.toml"), Path::new("o")).unwrap();
+    ends(&run, &["correct-panel-loop.toml"]);
+}

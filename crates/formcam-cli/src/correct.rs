@@ -80,9 +80,9 @@ pub struct CorrectArgs {
 }
 
 pub(crate) fn read_text(path: &Path) -> Result<String, CliError> {
-    fs::read_to_string(path).map_err(|source| CliError::Read {
+    formcam_files::read_text(path).map_err(|e| CliError::Read {
         path: path.to_path_buf(),
-        source,
+        source: e.into(),
     })
 }
 

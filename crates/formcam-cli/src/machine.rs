@@ -1,7 +1,6 @@
 //! `formcam machine show|fk`: reading machine files (or shipped machines by name).
 
 use std::fmt::Write as _;
-use std::fs;
 use std::path::Path;
 
 use formcam_machine::Machine;
@@ -11,16 +10,17 @@ use crate::output::write_files;
 
 /// Reads a machine file; errors name the file, the link or point, and the field.
 pub fn load(path: &Path) -> Result<Machine, CliError> {
-    let text = fs::read_to_string(path).map_err(|source| CliError::ReadMachine {
+    let text = formcam_files::read_text(path).map_err(|e| CliError::ReadMachine {
         path: path.to_path_buf(),
-        source,
+        source: e.into(),
     })?;
     parse(path, &text)
 }
 
-/// A machine from the text of its file (named `path` in errors).
+/// A machine from the text of its file (named `path` in errors; URDF or
+/// TOML by its extension).
 pub fn parse(path: &Path, text: &str) -> Result<Machine, CliError> {
-    Machine::from_toml(text).map_err(|source| CliError::Machine {
+    Machine::from_file_text(path, text).map_err(|source| CliError::Machine {
         path: path.to_path_buf(),
         source,
     })
@@ -41,9 +41,9 @@ type AxesRow = (Option<f64>, Vec<f64>);
 
 /// The rows of an axes CSV.
 fn read_axes(m: &Machine, path: &Path) -> Result<Vec<AxesRow>, CliError> {
-    let text = fs::read_to_string(path).map_err(|source| CliError::ReadAxes {
+    let text = formcam_files::read_text(path).map_err(|e| CliError::ReadAxes {
         path: path.to_path_buf(),
-        source,
+        source: e.into(),
     })?;
     let mut lines = text
         .lines()

@@ -23,7 +23,23 @@ pub use error::CliError;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// The most read of one input file, MiB: a larger input (or a device
+    /// that never ends) is refused.
+    #[arg(
+        long,
+        global = true,
+        value_name = "MB",
+        default_value_t = formcam_files::DEFAULT_MAX_INPUT_BYTES / MIB,
+        value_parser = clap::value_parser!(u64).range(1..=MAX_INPUT_MB)
+    )]
+    max_input_mb: u64,
 }
+
+/// Bytes per MiB.
+const MIB: u64 = 1024 * 1024;
+
+/// The largest `--max-input-mb` (1 TiB).
+const MAX_INPUT_MB: u64 = 1024 * 1024;
 
 #[derive(Debug, Subcommand)]
 enum Command {
@@ -150,6 +166,7 @@ enum MachineCommand {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    formcam_files::set_max_input_bytes(cli.max_input_mb * MIB);
     let result = match cli.command {
         Command::Wind {
             what,

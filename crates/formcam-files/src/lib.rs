@@ -8,6 +8,10 @@ mod quote;
 mod read;
 mod write;
 
+pub use read::{
+    DEFAULT_MAX_INPUT_BYTES, FileKind, ReadError, max_input_bytes, read_bytes, read_bytes_capped,
+    read_text, read_text_capped, set_max_input_bytes,
+};
 pub use write::{
     Hook, MARKER, Point, WriteError, Writer, resolve, same_file, write_files, write_folder,
 };

@@ -12,6 +12,7 @@ mod band;
 mod error;
 mod file;
 mod fk;
+mod format;
 mod ik;
 mod machine;
 pub mod shipped;
@@ -25,6 +26,7 @@ pub use file::{
     SpindleFollows, VisualSpec,
 };
 pub use fk::Fk;
+pub use format::MachineFormat;
 pub use ik::{AxisTrack, IkMethod, Issue, IssueKind, ORIENTATION_SCALE, solve};
 pub use machine::{Axis, Joint, JointKind, KeyPoint, Link, Machine, Roles, Shape, Visual};
 pub use target::{Target, placement_targets, winder_targets};

@@ -9,11 +9,13 @@
 
 use std::collections::{HashMap, HashSet};
 
+use serde::Deserialize;
+
 use crate::MachineError;
 use crate::file::{
     JointType, LinkSpec, MachineFile, MachineTable, OriginSpec, PointSpec, VisualSpec,
 };
-use crate::machine::Machine;
+use crate::machine::{Machine, line_col};
 
 /// Millimetres per metre.
 const MM: f64 = 1000.0;
@@ -335,4 +337,77 @@ impl Machine {
         };
         Machine::from_file(&file)
     }
+
+    /// Reads a machine from a whole URDF document: the links from the URDF
+    /// (see [`links_from_urdf`]), the `[machine]` table and the `[[point]]`
+    /// key points from the text of its `<formcam>` element, a child of
+    /// `<robot>` (an extension element, which other URDF readers skip),
+    /// written as in a TOML machine file (mm, degrees; points in the URDF
+    /// link frames):
+    ///
+    /// ```xml
+    /// <robot name="arm">
+    ///   ...
+    ///   <formcam><![CDATA[
+    ///   [machine]
+    ///   name = "arm"
+    ///   kind = "placement"
+    ///   ...
+    ///   [[point]]
+    ///   name = "roller"
+    ///   link = "head"
+    ///   xyz = [0.0, 0.0, 175.0]
+    ///   ]]></formcam>
+    /// </robot>
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`MachineError::Urdf`] when the document cannot be read, has no
+    /// `<formcam>` element or its text is no valid `[machine]` table and
+    /// points (the line and column counted in that text); then those of
+    /// [`Machine::from_urdf`].
+    pub fn from_urdf_document(text: &str) -> Result<Machine, MachineError> {
+        let links = links_from_urdf(text)?;
+        let roles = formcam_roles(text)?;
+        Machine::from_file(&MachineFile {
+            machine: roles.machine,
+            links,
+            points: roles.points,
+        })
+    }
+}
+
+/// What URDF has no place for: the `<formcam>` element's TOML.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FormcamRoles {
+    /// The `[machine]` table.
+    machine: MachineTable,
+    /// The key points.
+    #[serde(default, rename = "point")]
+    points: Vec<PointSpec>,
+}
+
+/// The roles in the `<formcam>` element of a URDF document (already read by
+/// urdf-rs, so well-formed).
+fn formcam_roles(text: &str) -> Result<FormcamRoles, MachineError> {
+    let robot: rustyxml::Element = text
+        .parse()
+        .map_err(|e: rustyxml::BuilderError| MachineError::Urdf(e.to_string()))?;
+    let element = robot.get_child("formcam", None).ok_or_else(|| {
+        MachineError::Urdf(
+            "no <formcam> element: a URDF machine needs the [machine] table and the \
+             [[point]] key points, as TOML, in a <formcam> element inside <robot>"
+                .into(),
+        )
+    })?;
+    let roles = element.content_str();
+    toml::from_str(&roles).map_err(|e| {
+        let (line, column) = e.span().map_or((0, 0), |s| line_col(&roles, s.start));
+        MachineError::Urdf(format!(
+            "<formcam> {line}:{column}: {}",
+            e.message().replace('\n', " ")
+        ))
+    })
 }

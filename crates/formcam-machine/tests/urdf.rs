@@ -330,3 +330,67 @@ fn joint_problems_are_field_errors() {
     let e = links_from_urdf(planar).unwrap_err().to_string();
     assert!(e.contains("\"p\"") && e.contains("planar"), "{e}");
 }
+
+/// `machines/placement-arm.urdf`: the arm's URDF with its roles in `<formcam>`.
+fn shipped_urdf() -> String {
+    read("../../machines/placement-arm.urdf")
+}
+
+#[test]
+fn a_urdf_document_with_formcam_roles_is_the_toml_arm() {
+    let t = Machine::from_toml(&read("../../machines/placement-arm.toml")).unwrap();
+    let u = Machine::from_urdf_document(&shipped_urdf()).unwrap();
+    assert_eq!(u.name, t.name);
+    assert_eq!(u.roles.kind, t.roles.kind);
+    assert_eq!(u.points[u.roles.payout].name, "roller");
+    assert_eq!(u.axes[u.roles.spindle.unwrap()].name, "A");
+    let names = |m: &Machine| m.axes.iter().map(|a| a.name.clone()).collect::<Vec<_>>();
+    assert_eq!(names(&u), names(&t));
+    let mut rng = Lcg(0xa11);
+    for _ in 0..50 {
+        let q: Vec<f64> = t
+            .axes
+            .iter()
+            .map(|_| (2.0 * rng.next() - 1.0) * 2.0 * std::f64::consts::PI)
+            .collect();
+        for (a, b) in t.key_points(&q).iter().zip(u.key_points(&q)) {
+            let d = (a - b).amax();
+            assert!(d < 1e-9, "{d} mm");
+        }
+    }
+}
+
+#[test]
+fn the_extension_chooses_the_machine_reader() {
+    let urdf = shipped_urdf();
+    let toml = read("../../machines/placement-arm.toml");
+    for name in ["arm.urdf", "arm.XML"] {
+        let m = Machine::from_file_text(std::path::Path::new(name), &urdf).unwrap();
+        assert_eq!(m.name, "fibre-placement arm", "{name}");
+        // A URDF document read as TOML is a TOML syntax error, as before.
+        let e = Machine::from_file_text(std::path::Path::new("arm.toml"), &urdf).unwrap_err();
+        assert!(matches!(e, MachineError::Syntax { .. }), "{e}");
+    }
+    let m = Machine::from_file_text(std::path::Path::new("arm.toml"), &toml).unwrap();
+    assert_eq!(m.name, "fibre-placement arm");
+}
+
+#[test]
+fn a_urdf_document_without_formcam_roles_says_what_is_missing() {
+    let e = Machine::from_urdf_document(&read("tests/data/arm.urdf"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("URDF: no <formcam> element"), "{e}");
+    assert!(e.contains("[machine]") && e.contains("[[point]]"), "{e}");
+}
+
+#[test]
+fn formcam_roles_errors_name_the_line_in_the_element() {
+    let text = shipped_urdf().replace("roller_radius = 25.0", "roller_radius = \"big\"");
+    let e = Machine::from_urdf_document(&text).unwrap_err().to_string();
+    assert!(e.starts_with("URDF: <formcam> 11:17: "), "{e}");
+    // The roles themselves are checked as in a TOML file.
+    let text = shipped_urdf().replace("payout = \"roller\"", "payout = \"eye\"");
+    let e = Machine::from_urdf_document(&text).unwrap_err().to_string();
+    assert!(e.contains("payout"), "{e}");
+}

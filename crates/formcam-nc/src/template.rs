@@ -236,7 +236,7 @@ impl Template {
 
     /// Reads a template file.
     pub fn load(path: &Path) -> Result<Self, NcError> {
-        let text = std::fs::read_to_string(path).map_err(|e| NcError::Io {
+        let text = formcam_files::read_text(path).map_err(|e| NcError::Io {
             path: path.display().to_string(),
             message: e.to_string(),
         })?;

@@ -349,13 +349,14 @@ fn read_machine(table: MachineTable, base_dir: &Path) -> Result<JobMachine, Prog
             (m, MachineSource::Shipped(name))
         }
         (None, Some(file)) => {
-            let text = std::fs::read_to_string(base_dir.join(&file)).map_err(|source| {
-                ProgramError::MachineNotFound {
+            let path = base_dir.join(&file);
+            let text =
+                formcam_files::read_text(&path).map_err(|e| ProgramError::MachineNotFound {
                     file: file.clone(),
-                    source,
-                }
-            })?;
-            let m = Machine::from_toml(&text).map_err(|e| ProgramError::machine(&file, e))?;
+                    source: e.into(),
+                })?;
+            let m = Machine::from_file_text(&path, &text)
+                .map_err(|e| ProgramError::machine(&file, e))?;
             (m, MachineSource::File(file))
         }
         _ => return Err(ProgramError::MachineChoice { names: all() }),
@@ -373,11 +374,10 @@ fn read_post(table: PostTable, base_dir: &Path) -> Result<Post, ProgramError> {
         (Some(_), Some(_)) => Err(ProgramError::PostBoth),
         (None, Some(file)) => {
             let path = base_dir.join(&file);
-            let text =
-                std::fs::read_to_string(&path).map_err(|source| ProgramError::TemplateRead {
-                    file: path.display().to_string(),
-                    source,
-                })?;
+            let text = formcam_files::read_text(&path).map_err(|e| ProgramError::TemplateRead {
+                file: path.display().to_string(),
+                source: e.into(),
+            })?;
             let template = Template::from_toml(&text).map_err(|source| ProgramError::Template {
                 file: path.display().to_string(),
                 source,

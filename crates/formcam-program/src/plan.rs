@@ -167,7 +167,7 @@ pub fn plan_until_with(
     };
     let read = |name: &str| {
         let p = job.base_dir.join(name);
-        std::fs::read_to_string(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))
+        formcam_files::read_text(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))
     };
     let mut warnings = job.warnings.clone();
     warnings.extend(job.mandrel.warnings());
@@ -235,7 +235,7 @@ fn plan_layers(
 ) -> Result<Vec<WoundLayer>, ProgramError> {
     let read = |name: &str| {
         let p = job.base_dir.join(name);
-        std::fs::read_to_string(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))
+        formcam_files::read_text(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))
     };
     let layered = matches!(job.layers, Layers::Multi(_));
     let specs = job.layers.specs();

@@ -6,7 +6,6 @@
 //! passes its text ([`History`]); the new content comes back in
 //! [`Corrected::report`] for the caller to write where it belongs.
 
-use std::fs;
 use std::path::{Path, PathBuf};
 
 use formcam_correct::simulate::LoopResult;
@@ -558,9 +557,9 @@ fn cmm_csv(m: &Measurements) -> String {
 
 /// Reads a text file.
 fn read(path: &Path) -> Result<String, RunError> {
-    fs::read_to_string(path).map_err(|source| RunError::Read {
+    formcam_files::read_text(path).map_err(|e| RunError::Read {
         path: path.to_path_buf(),
-        source,
+        source: e.into(),
     })
 }
 

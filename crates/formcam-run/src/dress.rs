@@ -6,7 +6,6 @@
 //! wheel's axis, `x` radial (mm, the ball's centre at the origin).
 
 use std::fmt::Write as _;
-use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -30,7 +29,7 @@ pub fn dress(job: &Path) -> Result<RunOutput, RunError> {
 /// [`dress`] reporting to `progress` (the simulation of forming, the
 /// files); [`RunError::Cancelled`] when it asks to stop.
 pub fn dress_with(job: &Path, progress: &dyn Progress) -> Result<RunOutput, RunError> {
-    let text = fs::read_to_string(job)
+    let text = formcam_files::read_text(job)
         .map_err(|e| dress_error(job, "", format!("cannot read the job file: {e}")))?;
     dress_text_with(job, &text, progress)
 }
@@ -144,7 +143,7 @@ fn resolve(job: &Path, file: &str) -> PathBuf {
 
 /// The contour of `process.initial_contour`; errors name the file and line.
 fn read_initial(path: &Path) -> Result<Vec<Point>, RunError> {
-    let text = fs::read_to_string(path).map_err(|e| {
+    let text = formcam_files::read_text(path).map_err(|e| {
         dress_error(
             path,
             "",

@@ -62,9 +62,9 @@ pub fn run_job_file_with(
     out: &Path,
     progress: &dyn Progress,
 ) -> Result<RunOutput, RunError> {
-    let text = fs::read_to_string(path).map_err(|source| RunError::ReadJob {
+    let text = formcam_files::read_text(path).map_err(|e| RunError::ReadJob {
         path: path.to_path_buf(),
-        source,
+        source: e.into(),
     })?;
     run_job_text_with(path, &text, JobKind::of(path, &text), out, progress)
 }

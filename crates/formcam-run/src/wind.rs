@@ -105,9 +105,9 @@ pub fn wind_file_with(
     progress: &dyn Progress,
 ) -> Result<RunOutput, RunError> {
     let t0 = Instant::now();
-    let text = std::fs::read_to_string(path).map_err(|source| RunError::Read {
+    let text = formcam_files::read_text(path).map_err(|e| RunError::Read {
         path: path.to_path_buf(),
-        source,
+        source: e.into(),
     })?;
     let wj = WindJob::from_wind(&text, eye_clearance, allow)
         .map_err(|e| RunError::wind(path, e))?
@@ -126,9 +126,9 @@ pub fn wind_file_with(
 
 /// The job at `path`, read.
 fn read_job(path: &Path) -> Result<WindJob, RunError> {
-    let text = std::fs::read_to_string(path).map_err(|source| RunError::Read {
+    let text = formcam_files::read_text(path).map_err(|e| RunError::Read {
         path: path.to_path_buf(),
-        source,
+        source: e.into(),
     })?;
     let base = path.parent().unwrap_or(Path::new(""));
     Ok(WindJob::from_toml(&text, base)

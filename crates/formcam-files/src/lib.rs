@@ -7,3 +7,5 @@
 mod quote;
 mod read;
 mod write;
+
+pub use quote::{QUOTE_MAX_CHARS, Quote, excerpt, quote, syntax_message};

@@ -129,7 +129,11 @@ impl DressJob {
             DressError::Toml {
                 line,
                 column,
-                message: e.message().replace('\n', " "),
+                message: formcam_files::syntax_message(
+                    e.message(),
+                    text,
+                    e.span().map_or(text.len(), |s| s.start),
+                ),
             }
         })
     }

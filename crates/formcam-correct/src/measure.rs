@@ -1,5 +1,7 @@
 //! The CMM's measurements: nominal and actual points per control section.
 
+use formcam_files::quote;
+
 use crate::CorrectError;
 use crate::vec3::{V3, dot, norm, scale, sub, unit};
 
@@ -162,11 +164,17 @@ impl Measurements {
                 let s = f
                     .get(c)
                     .ok_or_else(|| bad(line, format!("no value for `{}`", names[c])))?;
-                let v: f64 = s
-                    .parse()
-                    .map_err(|_| bad(line, format!("`{}` = `{s}` is not a number", names[c])))?;
+                let v: f64 = s.parse().map_err(|_| {
+                    bad(
+                        line,
+                        format!("`{}` = `{}` is not a number", names[c], quote(s)),
+                    )
+                })?;
                 if !v.is_finite() {
-                    return Err(bad(line, format!("`{}` = `{s}` is not finite", names[c])));
+                    return Err(bad(
+                        line,
+                        format!("`{}` = `{}` is not finite", names[c], quote(s)),
+                    ));
                 }
                 Ok(v)
             };
@@ -249,7 +257,12 @@ impl Measurements {
                     "INCH" => 25.4,
                     "CM" => 10.0,
                     "METER" => 1000.0,
-                    other => return Err(bad(stmt_line, format!("unknown length unit `{other}`"))),
+                    other => {
+                        return Err(bad(
+                            stmt_line,
+                            format!("unknown length unit `{}`", quote(other)),
+                        ));
+                    }
                 };
                 continue;
             }
@@ -286,12 +299,15 @@ impl Measurements {
                     bad(stmt_line, format!("feature {label}: too few coordinates"))
                 })?;
                 let v: f64 = s.parse().map_err(|_| {
-                    bad(stmt_line, format!("feature {label}: `{s}` is not a number"))
+                    bad(
+                        stmt_line,
+                        format!("feature {}: `{}` is not a number", quote(&label), quote(s)),
+                    )
                 })?;
                 if !v.is_finite() {
                     return Err(bad(
                         stmt_line,
-                        format!("feature {label}: `{s}` is not finite"),
+                        format!("feature {}: `{}` is not finite", quote(&label), quote(s)),
                     ));
                 }
                 Ok(v)
@@ -319,7 +335,10 @@ impl Measurements {
             let Some(k) = label.rfind(['_', '.', '-']) else {
                 return Err(bad(
                     line,
-                    format!("DMIS label `{label}`: name points `<section>_<point>` (e.g. `S1_P3`)"),
+                    format!(
+                        "DMIS label `{}`: name points `<section>_<point>` (e.g. `S1_P3`)",
+                        quote(&label)
+                    ),
                 ));
             };
             m.push(
@@ -356,7 +375,11 @@ impl Measurements {
         if s.points.iter().any(|q| q.point == p.point) {
             return Err(bad(
                 line,
-                format!("point `{}` of section `{}` is given twice", p.point, s.name),
+                format!(
+                    "point `{}` of section `{}` is given twice",
+                    quote(&p.point),
+                    quote(&s.name)
+                ),
             ));
         }
         s.points.push(p);

@@ -138,19 +138,22 @@ fn write_char(f: &mut fmt::Formatter<'_>, c: char) -> fmt::Result {
 }
 
 /// A parser's `message` about `text` at byte `at`, or, when the message is
-/// empty, what was expected there: `NUL characters are not allowed` (or
+/// empty or the parser stopped at a control character, what was expected
+/// there: `NUL characters are not allowed` (or
 /// another control character), `expected a value after `=`` when the line
 /// stops after `key =`, `unexpected end of the text`, `unexpected `c``.
 /// Newlines in the message become spaces (a message is one line).
 pub fn syntax_message(message: &str, text: &str, at: usize) -> String {
+    let at = floor_char_boundary(text, at);
+    let stray = |c: char| c.is_control() && !matches!(c, '\t' | '\n' | '\r');
     let message = message.trim();
-    if !message.is_empty() {
+    // A control character where the parser stopped is what it could not
+    // read, whatever it says it expected (the user cannot see it).
+    let here = text[at..].chars().next().filter(|&c| stray(c));
+    if !message.is_empty() && here.is_none() {
         return message.replace('\n', " ");
     }
-    if let Some(c) = text
-        .chars()
-        .find(|&c| c.is_control() && !matches!(c, '\t' | '\n' | '\r'))
-    {
+    if let Some(c) = here.or_else(|| text.chars().find(|&c| stray(c))) {
         return if c == '\0' {
             "NUL characters are not allowed".to_string()
         } else {
@@ -160,7 +163,6 @@ pub fn syntax_message(message: &str, text: &str, at: usize) -> String {
             )
         };
     }
-    let at = floor_char_boundary(text, at);
     let rest_of_line = text[at..].split('\n').next().unwrap_or_default();
     if text[..at].trim_end().ends_with('=') && rest_of_line.trim().is_empty() {
         return "expected a value after `=`".to_string();
@@ -278,6 +280,14 @@ mod tests {
         );
         assert_eq!(syntax_message("", "key = }", 6), "unexpected `}`");
         assert_eq!(syntax_message("invalid\nkey", "x", 0), "invalid key");
+        assert_eq!(
+            syntax_message("expected newline", "a = 1\0\n", 6),
+            "expected newline"
+        );
+        assert_eq!(
+            syntax_message("expected newline", "a = 1\0\n", 5),
+            "NUL characters are not allowed"
+        );
     }
 
     proptest! {

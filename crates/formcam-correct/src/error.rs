@@ -1,6 +1,7 @@
 use std::fmt;
 
 use formcam_schema::{Field, JobSchema, Range, SchemaError, Unit};
+use formcam_files::quote;
 use thiserror::Error;
 
 use crate::{JobField, ScenarioField, Tool};
@@ -258,13 +259,13 @@ pub enum MeasureProblem {
     #[error("give x_act, y_act, z_act, or dev with nx, ny, nz")]
     NoActualColumns,
     /// A row shorter than the header.
-    #[error("no value for `{column}`")]
+    #[error("no value for `{}`", quote(column))]
     NoValue {
         /// The column.
         column: String,
     },
     /// A value that is no number.
-    #[error("`{column}` = `{text}` is not a number")]
+    #[error("`{}` = `{}` is not a number", quote(column), quote(text))]
     NotANumber {
         /// The column.
         column: String,
@@ -272,7 +273,7 @@ pub enum MeasureProblem {
         text: String,
     },
     /// A value that is infinite or not a number.
-    #[error("`{column}` = `{text}` is not finite")]
+    #[error("`{}` = `{}` is not finite", quote(column), quote(text))]
     NotFinite {
         /// The column.
         column: String,
@@ -289,7 +290,7 @@ pub enum MeasureProblem {
     #[error("no actual point")]
     NoActualPoint,
     /// A point given twice.
-    #[error("point `{point}` of section `{section}` is given twice")]
+    #[error("point `{}` of section `{}` is given twice", quote(point), quote(section))]
     PointTwice {
         /// The section.
         section: String,
@@ -297,7 +298,7 @@ pub enum MeasureProblem {
         point: String,
     },
     /// A DMIS length unit not known.
-    #[error("unknown length unit `{unit}`")]
+    #[error("unknown length unit `{}`", quote(unit))]
     Unit {
         /// The unit as written.
         unit: String,
@@ -306,19 +307,19 @@ pub enum MeasureProblem {
     #[error("a feature label without `)`")]
     OpenLabel,
     /// A DMIS point that is not Cartesian.
-    #[error("feature {label}: only CART points are read")]
+    #[error("feature {}: only CART points are read", quote(label))]
     NotCartesian {
         /// The feature's label.
         label: String,
     },
     /// A DMIS point with fewer than three coordinates.
-    #[error("feature {label}: too few coordinates")]
+    #[error("feature {}: too few coordinates", quote(label))]
     FewCoordinates {
         /// The feature's label.
         label: String,
     },
     /// A DMIS coordinate that is no number.
-    #[error("feature {label}: `{text}` is not a number")]
+    #[error("feature {}: `{}` is not a number", quote(label), quote(text))]
     FeatureNotANumber {
         /// The feature's label.
         label: String,
@@ -326,7 +327,7 @@ pub enum MeasureProblem {
         text: String,
     },
     /// A DMIS coordinate that is infinite or not a number.
-    #[error("feature {label}: `{text}` is not finite")]
+    #[error("feature {}: `{}` is not finite", quote(label), quote(text))]
     FeatureNotFinite {
         /// The feature's label.
         label: String,
@@ -334,19 +335,19 @@ pub enum MeasureProblem {
         text: String,
     },
     /// A measured feature given twice.
-    #[error("FA({label}) is given twice")]
+    #[error("FA({}) is given twice", quote(label))]
     ActualTwice {
         /// The feature's label.
         label: String,
     },
     /// A nominal feature without its measured one.
-    #[error("F({label}) has no measured FA({label})")]
+    #[error("F({}) has no measured FA({})", quote(label), quote(label))]
     NoMeasuredFeature {
         /// The feature's label.
         label: String,
     },
     /// A label that names no section and point.
-    #[error("DMIS label `{label}`: name points `<section>_<point>` (e.g. `S1_P3`)")]
+    #[error("DMIS label `{}`: name points `<section>_<point>` (e.g. `S1_P3`)", quote(label))]
     LabelName {
         /// The label.
         label: String,

@@ -12,7 +12,7 @@
 //! over the pieces between breakpoints, so the removed areas of all steps add
 //! up to the area between the first and the last contour (to rounding).
 
-use crate::Point;
+use crate::{ContourFault, Point};
 
 /// A value standing for "no dresser here" (above any wheel), mm.
 pub(crate) const ABOVE: f64 = 1.0e9;
@@ -27,20 +27,19 @@ pub struct Contour {
 impl Contour {
     /// A contour through `points`; `Err` names what is wrong (fewer than two
     /// points, a value that is not finite, `x` decreasing).
-    pub fn new(points: Vec<Point>) -> Result<Contour, String> {
+    pub fn new(points: Vec<Point>) -> Result<Contour, ContourFault> {
         if points.len() < 2 {
-            return Err("a contour needs at least two points".into());
+            return Err(ContourFault::TooFewPoints);
         }
         if let Some(i) = points.iter().position(|p| !p.is_finite()) {
-            return Err(format!("point {} is not finite", i + 1));
+            return Err(ContourFault::NotFinite { point: i + 1 });
         }
         if let Some(i) = points.windows(2).position(|w| w[1].x < w[0].x) {
-            return Err(format!(
-                "x decreases from {} to {} at point {}",
-                points[i].x,
-                points[i + 1].x,
-                i + 2
-            ));
+            return Err(ContourFault::Decreasing {
+                from: points[i].x,
+                to: points[i + 1].x,
+                point: i + 2,
+            });
         }
         Ok(Contour { points })
     }

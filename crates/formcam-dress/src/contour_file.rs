@@ -7,7 +7,9 @@
 //! the axis, `y` radial), read as it always was. Without a header the
 //! columns are `z,x`. Every other line holds numbers, `z` non-decreasing.
 
-use crate::{DressError, Point};
+use formcam_files::excerpt;
+
+use crate::{ContourFault, ContourLineProblem, DressError, Point};
 
 /// Which columns hold the axial and the radial coordinate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -36,7 +38,7 @@ pub fn read_contour(text: &str) -> Result<Vec<Point>, DressError> {
                 continue;
             }
             (Some(_), None) => {
-                return Err(at(line, "expected numbers z,x (mm) in every column"));
+                return Err(at(line, ContourLineProblem::NotNumbers));
             }
             (None, Some(v)) => {
                 let c = Columns {
@@ -71,11 +73,9 @@ fn header(cells: &[&str], line: usize) -> Result<Columns, DressError> {
         _ => {
             return Err(at(
                 line,
-                format!(
-                    "the header names the columns {}; expected z,x (mm: z along the wheel's \
-                     axis, x radial) or the older x,y",
-                    cells.join(",")
-                ),
+                ContourLineProblem::Header {
+                    header: excerpt(&cells.join(",")),
+                },
             ));
         }
     };
@@ -86,8 +86,8 @@ fn header(cells: &[&str], line: usize) -> Result<Columns, DressError> {
 fn point(values: &[f64], c: Columns, line: usize) -> Result<Point, DressError> {
     match (values.get(c.axial), values.get(c.radial)) {
         (Some(&z), Some(&x)) if z.is_finite() && x.is_finite() => Ok(Point::new(z, x)),
-        (Some(_), Some(_)) => Err(at(line, "z and x must be finite numbers (mm)")),
-        _ => Err(at(line, "expected two numbers z,x (mm)")),
+        (Some(_), Some(_)) => Err(at(line, ContourLineProblem::NotFinite)),
+        _ => Err(at(line, ContourLineProblem::TooFewNumbers)),
     }
 }
 
@@ -99,10 +99,10 @@ fn push(points: &mut Vec<Point>, p: Point, line: usize) -> Result<(), DressError
     {
         return Err(at(
             line,
-            format!(
-                "z decreases from {} to {}: the points must run along the wheel's axis",
-                last.x, p.x
-            ),
+            ContourLineProblem::Decreasing {
+                from: last.x,
+                to: p.x,
+            },
         ));
     }
     points.push(p);
@@ -112,18 +112,13 @@ fn push(points: &mut Vec<Point>, p: Point, line: usize) -> Result<(), DressError
 /// Enough points.
 fn check(points: &[Point]) -> Result<(), DressError> {
     if points.len() < 2 {
-        return Err(DressError::Contour(
-            "the file holds fewer than two points z,x".into(),
-        ));
+        return Err(ContourFault::FileTooShort.into());
     }
     Ok(())
 }
 
-fn at(line: usize, message: impl Into<String>) -> DressError {
-    DressError::ContourLine {
-        line,
-        message: message.into(),
-    }
+fn at(line: usize, problem: ContourLineProblem) -> DressError {
+    DressError::ContourLine { line, problem }
 }
 
 #[cfg(test)]

@@ -3,6 +3,7 @@
 use formcam_nc::{Dialect, Program};
 use formcam_progress::{Progress, Silent};
 
+use crate::ContourFault;
 use crate::error::{finite, mm, num};
 use crate::forming::offset_contour;
 use crate::program::dressing_program;
@@ -278,13 +279,11 @@ fn user_contour(profile: &Profile, points: Vec<Point>, h: f64) -> Result<Contour
     let pts = c.points();
     let (x0, x1) = (pts[0].x, pts[pts.len() - 1].x);
     let clipped = c.clipped(-half, half).ok_or_else(|| {
-        DressError::Contour(format!(
-            "it spans z from {} to {}; it must cover the wheel's width, -{} to {}",
-            mm(x0),
-            mm(x1),
-            mm(half),
-            mm(half)
-        ))
+        DressError::from(ContourFault::NotCovering {
+            from: x0,
+            to: x1,
+            half_width: half,
+        })
     })?;
     let mut worst = (0.0, 0.0);
     for q in profile.sample(h) {
@@ -303,11 +302,11 @@ fn user_contour(profile: &Profile, points: Vec<Point>, h: f64) -> Result<Contour
         }
     }
     if worst.0 > 1e-9 {
-        return Err(DressError::Contour(format!(
-            "it lies {} below the profile at z = {}: the dresser cannot restore the profile there",
-            mm(worst.0),
-            mm(worst.1)
-        )));
+        return Err(ContourFault::BelowProfile {
+            depth: worst.0,
+            z: worst.1,
+        }
+        .into());
     }
     Ok(clipped)
 }

@@ -1,5 +1,6 @@
 //! Everything that can stop a dressing computation.
 
+use formcam_files::quote;
 use formcam_nc::NcError;
 use thiserror::Error;
 
@@ -42,14 +43,14 @@ pub enum DressError {
     Schema(formcam_schema::SchemaError),
     /// A user's initial wheel contour cannot be used.
     #[error("process.initial_contour: {0}")]
-    Contour(String),
+    Contour(#[from] ContourFault),
     /// A line of the initial contour's CSV cannot be read.
-    #[error("process.initial_contour, line {line}: {message}")]
+    #[error("process.initial_contour, line {line}: {problem}")]
     ContourLine {
         /// 1-based line of the file.
         line: usize,
         /// What is wrong and what is expected.
-        message: String,
+        problem: ContourLineProblem,
     },
     /// The NC program could not be written.
     #[error("program: {0}")]
@@ -57,6 +58,99 @@ pub enum DressError {
     /// The run was cancelled by its progress hook.
     #[error(transparent)]
     Cancelled(#[from] formcam_progress::Cancelled),
+}
+
+/// Why a wheel contour cannot be used.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum ContourFault {
+    /// Fewer than two points.
+    #[error("a contour needs at least two points")]
+    TooFewPoints,
+    /// The contour's file holds fewer than two points.
+    #[error("the file holds fewer than two points z,x")]
+    FileTooShort,
+    /// A point that is NaN or infinite.
+    #[error("point {point} is not finite")]
+    NotFinite {
+        /// The point (1-based).
+        point: usize,
+    },
+    /// Points out of order along the wheel's axis.
+    #[error("x decreases from {from} to {to} at point {point}")]
+    Decreasing {
+        /// The point before, mm.
+        from: f64,
+        /// This point, mm.
+        to: f64,
+        /// The point (1-based).
+        point: usize,
+    },
+    /// The contour does not span the wheel's width.
+    #[error(
+        "it spans z from {} to {}; it must cover the wheel's width, -{} to {}",
+        mm(*.from),
+        mm(*.to),
+        mm(*.half_width),
+        mm(*.half_width)
+    )]
+    NotCovering {
+        /// Where it starts, mm.
+        from: f64,
+        /// Where it ends, mm.
+        to: f64,
+        /// Half the wheel's width, mm.
+        half_width: f64,
+    },
+    /// The contour lies below the profile, which dressing cannot restore.
+    #[error(
+        "it lies {} below the profile at z = {}: the dresser cannot restore the profile there",
+        mm(*.depth),
+        mm(*.z)
+    )]
+    BelowProfile {
+        /// How far below, mm.
+        depth: f64,
+        /// Where, mm.
+        z: f64,
+    },
+    /// The job names a contour file whose points were not given.
+    #[error("{} was not read", quote(.file))]
+    NotRead {
+        /// The file as the job names it.
+        file: String,
+    },
+}
+
+/// Why a line of the initial contour's CSV cannot be read.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum ContourLineProblem {
+    /// A cell that is not a number after the header.
+    #[error("expected numbers z,x (mm) in every column")]
+    NotNumbers,
+    /// A header naming other columns.
+    #[error(
+        "the header names the columns {}; expected z,x (mm: z along the wheel's axis, x radial) \
+         or the older x,y",
+        quote(.header)
+    )]
+    Header {
+        /// The header as written (its cells joined by commas).
+        header: String,
+    },
+    /// A coordinate that is NaN or infinite.
+    #[error("z and x must be finite numbers (mm)")]
+    NotFinite,
+    /// A row with fewer than two numbers.
+    #[error("expected two numbers z,x (mm)")]
+    TooFewNumbers,
+    /// `z` smaller than on the row before.
+    #[error("z decreases from {from} to {to}: the points must run along the wheel's axis")]
+    Decreasing {
+        /// `z` on the row before, mm.
+        from: f64,
+        /// `z` on this row, mm.
+        to: f64,
+    },
 }
 
 impl DressError {

@@ -30,7 +30,9 @@ use formcam_schema::{
 };
 use serde::Deserialize;
 
-use crate::{Allowance, DressError, DressSpec, DresserSpec, FeedSpec, Point, WheelSpec};
+use crate::{
+    Allowance, ContourFault, DressError, DressSpec, DresserSpec, FeedSpec, Point, WheelSpec,
+};
 
 /// The default arc angle (0.2618 rad), degrees.
 pub const ARC_ANGLE_DEG: f64 = 15.0;
@@ -129,7 +131,11 @@ impl DressJob {
             DressError::Toml {
                 line,
                 column,
-                message: e.message().replace('\n', " "),
+                message: formcam_files::syntax_message(
+                    e.message(),
+                    text,
+                    e.span().map_or(text.len(), |s| s.start),
+                ),
             }
         })
     }
@@ -169,7 +175,7 @@ impl DressJob {
             (Some(d), None, _) => Allowance::Depth(d),
             (None, Some(_), Some(points)) => Allowance::Contour(points),
             (None, Some(file), None) => {
-                return Err(DressError::Contour(format!("{file} was not read")));
+                return Err(ContourFault::NotRead { file: file.clone() }.into());
             }
             (None, None, _) => {
                 return Err(DressError::Missing {

@@ -75,7 +75,7 @@ pub use contour_file::read_contour;
 pub use curve::Piece;
 pub use dresser::{Dresser, DresserSpec, Outline, Side};
 pub use dressing::{Allowance, DressSpec, Dressing, STEP_MIN, dress, dress_with};
-pub use error::DressError;
+pub use error::{ContourFault, ContourLineProblem, DressError};
 pub use feed::{FeedPlan, FeedSpec, plan_feed};
 pub use forming::{Forming, Step, offset_contour, simulate, simulate_with};
 pub use job::{ARC_ANGLE_DEG, DRESS_JOB, DressJob, DresserJob, ProcessJob, WheelJob};

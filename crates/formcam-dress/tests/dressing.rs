@@ -457,3 +457,43 @@ fn bad_input_is_one_line_naming_the_field() {
         .to_string();
     assert!(e.contains("unknown field `speed`"), "{e}");
 }
+
+/// The message after `line N, column M: ` of a dressing job's TOML error.
+fn toml_message(text: &str) -> String {
+    let e = DressJob::from_toml(text).unwrap_err();
+    let shown = e.to_string();
+    assert!(shown.starts_with("line "), "{shown}");
+    let said = shown.split_once(": ").map_or("", |(_, said)| said).trim();
+    assert!(!said.is_empty(), "an empty message: {shown:?}");
+    assert!(!shown.chars().any(char::is_control), "{shown:?}");
+    said.to_string()
+}
+
+#[test]
+fn a_dressing_job_cut_after_its_equals_sign_says_a_value_is_expected() {
+    let at = EXAMPLE.find("r2 = ").unwrap() + "r2 =".len();
+    let cut = &EXAMPLE[..at];
+    let said = toml_message(cut);
+    assert!(said.contains("expected"), "{said}");
+    let rest = &EXAMPLE[at..];
+    let blanked = format!("{cut}{}", &rest[rest.find('\n').unwrap()..]);
+    let said = toml_message(&blanked);
+    assert!(said.contains("expected"), "{said}");
+}
+
+#[test]
+fn a_dressing_job_with_a_nul_says_nul_is_not_allowed() {
+    let text = EXAMPLE.replacen("r2 = 0.296", "r2 = 0.296\0", 1);
+    let said = toml_message(&text);
+    assert!(said.contains("NUL"), "{said}");
+}
+
+#[test]
+fn a_huge_contour_header_is_quoted_short_and_escaped() {
+    let text = format!("z,q\u{1b}[2J\0{}\n0,1\n1,1\n", ",y".repeat(5 << 20));
+    let e = formcam_dress::read_contour(&text).unwrap_err().to_string();
+    assert!(e.starts_with("process.initial_contour, line 1: the header names the columns z,q"));
+    assert!(e.chars().count() < 300, "{} characters", e.chars().count());
+    assert!(!e.chars().any(char::is_control), "{e:?}");
+    assert!(e.contains("\\u{1b}[2J\\0,y,y") && e.contains('…'), "{e}");
+}

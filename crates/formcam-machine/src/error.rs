@@ -1,3 +1,7 @@
+use std::fmt;
+use std::sync::Arc;
+
+use formcam_files::quote;
 use thiserror::Error;
 
 /// Everything that can stop reading a machine or solving its kinematics.
@@ -25,10 +29,73 @@ pub enum MachineError {
     },
     /// A URDF document that cannot be read.
     #[error("URDF: {0}")]
-    Urdf(String),
+    Urdf(#[from] UrdfFault),
     /// The inverse kinematics cannot be set up for this machine and target.
     #[error("inverse kinematics: {0}")]
-    Ik(String),
+    Ik(#[from] IkFault),
+}
+
+/// urdf-rs's reason for refusing a document, shared so that the error stays
+/// `Clone`; it prints on one line.
+#[derive(Debug, Clone)]
+pub struct UrdfFault(Arc<urdf_rs::UrdfError>);
+
+impl UrdfFault {
+    /// urdf-rs's error.
+    pub fn source_error(&self) -> &urdf_rs::UrdfError {
+        &self.0
+    }
+}
+
+impl From<urdf_rs::UrdfError> for UrdfFault {
+    fn from(e: urdf_rs::UrdfError) -> Self {
+        Self(Arc::new(e))
+    }
+}
+
+impl PartialEq for UrdfFault {
+    /// The same reason: the same text.
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0) || self.to_string() == other.to_string()
+    }
+}
+
+impl fmt::Display for UrdfFault {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let text = self.0.to_string();
+        let mut words = text.split_whitespace();
+        if let Some(first) = words.next() {
+            write!(f, "{first}")?;
+        }
+        for w in words {
+            write!(f, " {w}")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for UrdfFault {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&*self.0)
+    }
+}
+
+/// Why the inverse kinematics cannot be set up.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum IkFault {
+    /// A winder whose payout point lies on its spindle's axis.
+    #[error("the payout point lies on the spindle axis at the home position")]
+    PayoutOnSpindleAxis,
+    /// `machine.ik = "closed-form"` on a machine that is no lathe-type winder.
+    #[error(
+        "\"{}\" has no closed form (it is not a lathe-type winder: spindle, carriage along it, \
+         radial cross feed, eye rotation about the cross feed)",
+        quote(.machine)
+    )]
+    NoClosedForm {
+        /// The machine's name.
+        machine: String,
+    },
 }
 
 impl MachineError {

@@ -23,7 +23,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::file::{MachineKind, SpindleFollows};
-use crate::{Fk, JointKind, Machine, MachineError, Target};
+use crate::{Fk, IkFault, JointKind, Machine, MachineError, Target};
 
 /// Orientation residuals (dimensionless) are weighed as lengths of this many mm.
 pub const ORIENTATION_SCALE: f64 = 100.0;
@@ -160,9 +160,7 @@ impl Spindle {
         let d = p - origin;
         let perp = d - k * d.dot(&k);
         if perp.norm() < 1e-9 {
-            return Err(MachineError::Ik(
-                "the payout point lies on the spindle axis at the home position".into(),
-            ));
+            return Err(IkFault::PayoutOnSpindleAxis.into());
         }
         Ok(Some(Self {
             axis,
@@ -570,11 +568,9 @@ pub fn solve(m: &Machine, targets: &[Target], method: IkMethod) -> Result<AxisTr
         IkMethod::Solver => None,
         IkMethod::Auto => Lathe::detect(m, spindle),
         IkMethod::ClosedForm => Some(Lathe::detect(m, spindle).ok_or_else(|| {
-            MachineError::Ik(format!(
-                "\"{}\" has no closed form (it is not a lathe-type winder: spindle, carriage \
-                 along it, radial cross feed, eye rotation about the cross feed)",
-                m.name
-            ))
+            MachineError::from(IkFault::NoClosedForm {
+                machine: m.name.clone(),
+            })
         })?),
     };
     let unknowns: Vec<usize> = (0..m.axes.len())

@@ -20,7 +20,7 @@ mod target;
 mod urdf;
 
 pub use band::{BandPassed, band_passed};
-pub use error::MachineError;
+pub use error::{IkFault, MachineError, UrdfFault};
 pub use file::{
     DhSpec, JointType, LinkSpec, MachineFile, MachineKind, MachineTable, OriginSpec, PointSpec,
     SpindleFollows, VisualSpec,

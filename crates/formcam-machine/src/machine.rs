@@ -526,7 +526,11 @@ impl Machine {
             MachineError::Syntax {
                 line,
                 column,
-                message: e.message().replace('\n', " "),
+                message: formcam_files::syntax_message(
+                    e.message(),
+                    text,
+                    e.span().map_or(text.len(), |s| s.start),
+                ),
             }
         })?;
         Self::from_file(&file)

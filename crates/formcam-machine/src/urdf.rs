@@ -11,11 +11,11 @@ use std::collections::{HashMap, HashSet};
 
 use serde::Deserialize;
 
-use crate::MachineError;
 use crate::file::{
     JointType, LinkSpec, MachineFile, MachineTable, OriginSpec, PointSpec, VisualSpec,
 };
 use crate::machine::{Machine, line_col};
+use crate::{MachineError, UrdfFault};
 
 /// Millimetres per metre.
 const MM: f64 = 1000.0;
@@ -59,14 +59,7 @@ const MM: f64 = 1000.0;
 /// link that is the child of two joints, and a capsule visual. The links
 /// themselves are checked by [`Machine::from_file`].
 pub fn links_from_urdf(text: &str) -> Result<Vec<LinkSpec>, MachineError> {
-    let robot = urdf_rs::read_from_string(text).map_err(|e| {
-        MachineError::Urdf(
-            e.to_string()
-                .split_whitespace()
-                .collect::<Vec<_>>()
-                .join(" "),
-        )
-    })?;
+    let robot = urdf_rs::read_from_string(text).map_err(UrdfFault::from)?;
     let link_names: HashSet<&str> = robot.links.iter().map(|l| l.name.as_str()).collect();
     let materials: HashMap<&str, &urdf_rs::Color> = robot
         .materials

@@ -222,3 +222,33 @@ fn the_spindle_turns_modulo_by_default_and_modulo_is_checked() {
     );
     assert!(e.contains("link \"r\"") && e.contains("modulo"), "{e}");
 }
+
+/// The message after `line:column: ` of a machine file's TOML error.
+fn syntax_message(text: &str) -> String {
+    let e = Machine::from_toml(text).unwrap_err();
+    assert!(matches!(e, MachineError::Syntax { .. }), "{e}");
+    let shown = e.to_string();
+    let said = shown.splitn(3, ':').nth(2).unwrap_or_default().trim();
+    assert!(!said.is_empty(), "an empty message: {shown:?}");
+    assert!(!shown.chars().any(char::is_control), "{shown:?}");
+    said.to_string()
+}
+
+#[test]
+fn a_machine_cut_after_its_equals_sign_says_a_value_is_expected() {
+    let text = include_str!("../../../machines/winder-2axis.toml");
+    let at = text.find("kind = ").unwrap() + "kind =".len();
+    let said = syntax_message(&text[..at]);
+    assert!(said.contains("expected"), "{said}");
+    let rest = &text[at..];
+    let blanked = format!("{}{}", &text[..at], &rest[rest.find('\n').unwrap()..]);
+    let said = syntax_message(&blanked);
+    assert!(said.contains("expected"), "{said}");
+}
+
+#[test]
+fn a_machine_with_a_nul_says_nul_is_not_allowed() {
+    let text = include_str!("../../../machines/winder-2axis.toml");
+    let said = syntax_message(&text.replacen("kind = \"winder\"", "kind = \"winder\"\0", 1));
+    assert!(said.contains("NUL"), "{said}");
+}

@@ -183,7 +183,10 @@ fn unsupported_joint_type_names_joint_and_type() {
 fn malformed_xml_is_a_urdf_error() {
     let e = links_from_urdf(r#"<robot name="r"><link name="a"></robot>"#).unwrap_err();
     match &e {
-        MachineError::Urdf(m) => assert!(!m.is_empty() && !m.contains('\n'), "{m}"),
+        MachineError::Urdf(fault) => {
+            let m = fault.to_string();
+            assert!(!m.is_empty() && !m.contains('\n'), "{m}");
+        }
         other => panic!("expected MachineError::Urdf, got {other:?}"),
     }
 }

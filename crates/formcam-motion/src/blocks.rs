@@ -9,7 +9,7 @@
 //! the rounding: a slope between the two is decided by the direct check of
 //! every sample, so the blocks are exactly those of that check.
 
-use crate::MotionError;
+use crate::{MotionError, TrajectoryFault};
 
 /// How far a block may leave the sampled trajectory.
 #[derive(Debug, Clone, PartialEq)]
@@ -66,13 +66,14 @@ fn check_input(
 ) -> Result<(), MotionError> {
     let n = x.len();
     if width == 0 || values.len() != n * width || tol.axes.len() != width {
-        return Err(MotionError::Trajectory(format!(
-            "{} samples of {width} axes need {} values and {width} tolerances (got {} and {})",
-            n,
-            n * width,
-            values.len(),
-            tol.axes.len()
-        )));
+        return Err(TrajectoryFault::Shape {
+            samples: n,
+            width,
+            needed: n * width,
+            values: values.len(),
+            tolerances: tol.axes.len(),
+        }
+        .into());
     }
     for (i, t) in tol.axes.iter().enumerate() {
         if !(t.is_finite() && *t > 0.0) {
@@ -91,12 +92,10 @@ fn check_input(
         });
     }
     if x.iter().chain(values).any(|v| !v.is_finite()) {
-        return Err(MotionError::Trajectory("a sample is not finite".into()));
+        return Err(TrajectoryFault::NotFinite.into());
     }
     if x.windows(2).any(|w| w[1] <= w[0]) {
-        return Err(MotionError::Trajectory(
-            "the parameter x must increase".into(),
-        ));
+        return Err(TrajectoryFault::NotIncreasing.into());
     }
     Ok(())
 }

@@ -20,7 +20,7 @@ mod ramps;
 mod times;
 
 pub use blocks::{Deviation, Tolerance, fit_blocks};
-pub use error::MotionError;
+pub use error::{MotionError, SetupStage, SolverFault, TrajectoryFault};
 pub use ramps::ramp_pieces;
 pub use times::{
     AxisLimits, Timing, check_acceleration, check_timing, deltas, global, global_by_cone,

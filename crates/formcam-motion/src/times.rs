@@ -7,7 +7,10 @@ use clarabel::solver::{
     SolverStatus, SupportedConeT,
 };
 
-use crate::MotionError;
+use crate::{MotionError, SetupStage, SolverFault};
+
+/// The most rounds of pairwise sweeps before they count as unsettled.
+const PAIRWISE_ROUNDS: usize = 10_000;
 
 /// One axis's limits (its units per second: mm/s or rad/s).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -201,7 +204,7 @@ pub fn pairwise(
     if n < 2 {
         return Ok(Timing::from_mu(t_star, mu));
     }
-    for _ in 0..10_000 {
+    for _ in 0..PAIRWISE_ROUNDS {
         let mut changed = false;
         for i in 0..n {
             let j = (i + 1) % n;
@@ -221,9 +224,10 @@ pub fn pairwise(
             return Ok(Timing::from_mu(t_star, mu));
         }
     }
-    Err(MotionError::Solver(
-        "the pairwise sweeps did not settle in 10000 rounds".into(),
-    ))
+    Err(SolverFault::PairwiseUnsettled {
+        rounds: PAIRWISE_ROUNDS,
+    }
+    .into())
 }
 
 /// The global optimum: least `sum t*_i / mu_i` with `0 < mu <= 1` and every
@@ -567,9 +571,9 @@ fn cone_program(
         .verbose(false)
         .max_iter(200)
         .build()
-        .map_err(|e| MotionError::Solver(format!("settings: {e:?}")))?;
+        .map_err(|e| refused(SetupStage::Settings, e))?;
     let mut solver = DefaultSolver::new(&p, &q, &amat, &b, &cones, settings)
-        .map_err(|e| MotionError::Solver(format!("setup: {e:?}")))?;
+        .map_err(|e| refused(SetupStage::Setup, e))?;
     solver.solve();
     match solver.solution.status {
         SolverStatus::Solved | SolverStatus::AlmostSolved => {
@@ -586,10 +590,17 @@ fn cone_program(
             let ts: Vec<f64> = idx.iter().map(|&i| t_star[i]).collect();
             Ok(Timing::from_mu(&ts, mu))
         }
-        other => Err(MotionError::Solver(format!(
-            "the solver stopped with {other:?}"
-        ))),
+        other => Err(SolverFault::Stopped(other).into()),
     }
+}
+
+/// Clarabel's refusal of its settings or problem.
+fn refused(stage: SetupStage, e: impl std::fmt::Debug) -> MotionError {
+    SolverFault::Refused {
+        stage,
+        detail: format!("{e:?}"),
+    }
+    .into()
 }
 
 /// Lowers `mu` where a jump row is broken by rounding, until none is, by no more
@@ -711,9 +722,7 @@ pub fn with_acceleration(
             });
         }
     }
-    Err(MotionError::Solver(
-        "the acceleration sweeps did not settle".into(),
-    ))
+    Err(SolverFault::AccelerationUnsettled.into())
 }
 
 /// Broken acceleration limits: `(block, axis, excess)` where the velocity change

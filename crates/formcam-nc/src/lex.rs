@@ -9,6 +9,7 @@
 //! not a word (a keyword, an expression). What a word means is the readers'
 //! business ([`crate::modal`] for the G codes).
 
+use formcam_files::quote;
 use std::ops::Range;
 
 use crate::modulo::Direction;
@@ -127,7 +128,7 @@ pub(crate) fn lines(text: &str) -> impl Iterator<Item = (Range<usize>, Range<usi
 
 /// An error on line `line` whose text is `text`.
 pub(crate) fn line_error(line: usize, text: &str, what: impl std::fmt::Display) -> NcError {
-    NcError::parse(line, format!("`{}`: {what}", text.trim_end()))
+    NcError::parse(line, format!("`{}`: {what}", quote(text.trim_end())))
 }
 
 /// Reads a number at `b[i..]`: `[+-]digits[.digits]` or `[+-].digits`.
@@ -269,7 +270,7 @@ impl Lexer<'_> {
             let end = self.text[i..]
                 .find([' ', '\t', ';'])
                 .map_or(self.text.len(), |k| i + k);
-            return Err(self.err(format!("cannot read `{}`", &self.text[i..end])));
+            return Err(self.err(format!("cannot read `{}`", quote(&self.text[i..end]))));
         }
         if self.out.complex.is_none() {
             self.out.complex = Some(self.text[i..].trim_end().to_string());
@@ -331,12 +332,13 @@ impl Lexer<'_> {
             .and_then(|ne| self.text[j..ne].parse::<f64>().ok().map(|v| (v, ne)))
             .filter(|(v, _)| v.is_finite());
         let Some((value, mut end)) = value else {
-            return Err(self.err(format!("`{name}=` is not followed by a number")));
+            return Err(self.err(format!("`{}=` is not followed by a number", quote(name))));
         };
         if direction.is_some() {
             if b.get(end) != Some(&b')') {
                 return Err(self.err(format!(
-                    "`{name}=`: the number in parentheses is not closed"
+                    "`{}=`: the number in parentheses is not closed",
+                    quote(name)
                 )));
             }
             end += 1;
@@ -371,7 +373,8 @@ impl Lexer<'_> {
         }
         if self.syntax.sinumerik && FRAMES.contains(&ident.as_str()) {
             return Err(self.err(format!(
-                "`{ident}` changes the coordinate system, which is not supported"
+                "`{}` changes the coordinate system, which is not supported",
+                quote(&ident)
             )));
         }
         self.out
@@ -415,7 +418,7 @@ impl Lexer<'_> {
                     let end = text[j..]
                         .find([' ', '\t', ';'])
                         .map_or(text.len(), |k| j + k);
-                    format!("cannot read `{}`", &text[i..end])
+                    format!("cannot read `{}`", quote(&text[i..end]))
                 } else {
                     format!("`{}` without a number", letter as char)
                 };
@@ -430,9 +433,9 @@ impl Lexer<'_> {
         let num = &text[j..ne];
         let value: f64 = num
             .parse()
-            .map_err(|_| self.err(format!("unreadable `{num}`")))?;
+            .map_err(|_| self.err(format!("unreadable `{}`", quote(num))))?;
         if !value.is_finite() {
-            return Err(self.err(format!("`{num}` is not finite")));
+            return Err(self.err(format!("`{}` is not finite", quote(num))));
         }
         let (point, decimals) = match num.find('.') {
             Some(p) => (true, (num.len() - p - 1) as u32),

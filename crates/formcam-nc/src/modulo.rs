@@ -31,7 +31,7 @@
 //! forms back to unwound angles (the first one within its first turn).
 
 use crate::num::{self, DEG};
-use crate::{Block, Dialect, Feed, NcError, Program};
+use crate::{Block, Dialect, Feed, NcError, Program, ProgramFault};
 
 /// The largest angle a modulo axis is written with, degrees (100 turns).
 pub const BOUND_DEG: f64 = 36_000.0;
@@ -151,10 +151,11 @@ fn split_long_blocks(p: &mut Program, axes: &[usize], max_deg: f64) -> Result<()
             continue;
         }
         if need > PIECES_MAX {
-            return Err(NcError::program(format!(
-                "block {i} turns a modulo axis by more than {:.0} turns",
-                PIECES_MAX * max_deg / 360.0
-            )));
+            return Err(ProgramFault::TurnsTooFar {
+                block: i,
+                turns: PIECES_MAX * max_deg / 360.0,
+            }
+            .into());
         }
         let n = need as usize;
         for j in 1..=n {
@@ -208,10 +209,11 @@ fn writable(p: &Program, i: usize, axes: &[usize]) -> Result<Vec<i64>, NcError> 
     axes.iter()
         .map(|&k| {
             scaled(p.blocks[i].target[k]).ok_or_else(|| {
-                NcError::program(format!(
-                    "block {i}: modulo axis {} at {}° is beyond what can be written",
-                    p.axes[k].name, p.blocks[i].target[k]
-                ))
+                NcError::from(ProgramFault::Unwritable {
+                    block: i,
+                    axis: p.axes[k].name.clone(),
+                    angle_deg: p.blocks[i].target[k],
+                })
             })
         })
         .collect()
@@ -238,20 +240,21 @@ pub(crate) fn check(p: &Program, style: ModuloStyle) -> Result<(), NcError> {
                     }
                 }
                 if let Some(j) = (0..axes.len()).find(|&j| (now[j] - off[j]).abs() > BOUND) {
-                    return Err(NcError::program(format!(
-                        "block {i}: modulo axis {} would be written beyond ±{BOUND_DEG}° \
-                         (re-zero it first: keep_within_turns)",
-                        name(j)
-                    )));
+                    return Err(ProgramFault::BeyondBound {
+                        block: i,
+                        axis: name(j).clone(),
+                        bound_deg: BOUND_DEG,
+                    }
+                    .into());
                 }
             }
             (ModuloStyle::Modulo, Some(prev)) => {
                 if let Some(j) = (0..axes.len()).find(|&j| (now[j] - prev[j]).abs() >= TURN) {
-                    return Err(NcError::program(format!(
-                        "block {i}: modulo axis {} turns a whole turn or more in one block \
-                         (split it first: keep_within_turns)",
-                        name(j)
-                    )));
+                    return Err(ProgramFault::WholeTurn {
+                        block: i,
+                        axis: name(j).clone(),
+                    }
+                    .into());
                 }
             }
             (ModuloStyle::Modulo, None) => {}

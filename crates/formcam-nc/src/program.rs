@@ -2,7 +2,7 @@
 
 use std::collections::HashSet;
 
-use crate::NcError;
+use crate::{NcError, ProgramFault};
 
 /// One NC axis of a program.
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
@@ -174,34 +174,31 @@ impl Program {
         let n = self.axes.len();
         for (i, b) in self.blocks.iter().enumerate() {
             if b.target.len() != n {
-                return Err(NcError::program(format!(
-                    "block {i}: {} axis values for {n} axes",
-                    b.target.len()
-                )));
+                return Err(ProgramFault::AxisCount {
+                    block: i,
+                    values: b.target.len(),
+                    axes: n,
+                }
+                .into());
             }
             if let Some(k) = b.target.iter().position(|v| !v.is_finite()) {
-                return Err(NcError::program(format!(
-                    "block {i}: axis {} is not finite",
-                    self.axes[k].name
-                )));
+                return Err(ProgramFault::NotFinite {
+                    block: i,
+                    axis: self.axes[k].name.clone(),
+                }
+                .into());
             }
             match (b.kind, b.feed) {
                 (Motion::Rapid, Feed::None) => {}
                 (Motion::Rapid, _) => {
-                    return Err(NcError::program(format!(
-                        "block {i}: a rapid block has a feed"
-                    )));
+                    return Err(ProgramFault::RapidWithFeed { block: i }.into());
                 }
                 (Motion::Linear, Feed::None) => {
-                    return Err(NcError::program(format!(
-                        "block {i}: a linear block has no feed"
-                    )));
+                    return Err(ProgramFault::LinearWithoutFeed { block: i }.into());
                 }
                 (Motion::Linear, Feed::PerMinute(f) | Feed::InverseTime(f)) => {
                     if !(f.is_finite() && f > 0.0) {
-                        return Err(NcError::program(format!(
-                            "block {i}: feed or block time {f} is not positive"
-                        )));
+                        return Err(ProgramFault::FeedNotPositive { block: i, value: f }.into());
                     }
                 }
             }
@@ -248,16 +245,19 @@ pub(crate) fn check_axes(axes: &[AxisSpec]) -> Result<(), NcError> {
     let mut seen = HashSet::new();
     for a in axes {
         if a.name.is_empty() {
-            return Err(NcError::program("an axis has an empty name"));
+            return Err(ProgramFault::EmptyAxisName.into());
         }
         if !seen.insert(a.name.as_str()) {
-            return Err(NcError::program(format!("axis {} appears twice", a.name)));
+            return Err(ProgramFault::AxisTwice {
+                axis: a.name.clone(),
+            }
+            .into());
         }
         if a.modulo && !a.rotary {
-            return Err(NcError::program(format!(
-                "axis {} is modulo but not rotary",
-                a.name
-            )));
+            return Err(ProgramFault::ModuloNotRotary {
+                axis: a.name.clone(),
+            }
+            .into());
         }
     }
     Ok(())

@@ -54,6 +54,7 @@ use crate::modal::{GCode, Modal, MotionMode};
 use crate::modulo::{Direction, unwrap};
 use crate::program::check_axes;
 use crate::{AxisSpec, Block, Dialect, Feed, Motion, NcError, Program};
+use formcam_files::quote;
 
 const AXIS_LETTERS: &str = "XYZABCUVW";
 
@@ -363,7 +364,7 @@ fn number(text: &str, lineno: usize, what: &str) -> Result<f64, NcError> {
     t.parse::<f64>()
         .ok()
         .filter(|v| v.is_finite())
-        .ok_or_else(|| NcError::parse(lineno, format!("{what}: `{t}` is not a number")))
+        .ok_or_else(|| NcError::parse(lineno, format!("{what}: `{}` is not a number", quote(t))))
 }
 
 /// Reads APT CLDATA as formcam's CLDATA writer writes it (machine-axis
@@ -415,7 +416,7 @@ pub fn read_cldata(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
             "UNITS" if !args.trim().eq_ignore_ascii_case("MM") => {
                 return Err(NcError::parse(
                     lineno,
-                    format!("UNITS/{}: only MM is supported", args.trim()),
+                    format!("UNITS/{}: only MM is supported", quote(args.trim())),
                 ));
             }
             "RAPID" => rapid = true,
@@ -430,7 +431,8 @@ pub fn read_cldata(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
                         NcError::parse(
                             lineno,
                             format!(
-                                "ORIGIN/{name}: not one of the program's axes ({})",
+                                "ORIGIN/{}: not one of the program's axes ({})",
+                                quote(name),
                                 r.axis_names()
                             ),
                         )
@@ -448,7 +450,10 @@ pub fn read_cldata(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
                     Some(u) => {
                         return Err(NcError::parse(
                             lineno,
-                            format!("FEDRAT unit {u}: only MMPM and INVERS are supported"),
+                            format!(
+                                "FEDRAT unit {}: only MMPM and INVERS are supported",
+                                quote(u)
+                            ),
                         ));
                     }
                 };

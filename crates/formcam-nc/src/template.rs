@@ -52,10 +52,12 @@ use std::path::Path;
 
 use serde::Deserialize;
 
+use crate::TemplateProblem;
 use crate::modulo::{self, ModuloStyle};
 use crate::num::{self, Out};
 use crate::program::nc_travel;
 use crate::{Feed, Motion, NcError, Program};
+use formcam_files::{excerpt, syntax_message};
 
 /// The TOML form.
 #[derive(Deserialize)]
@@ -178,23 +180,21 @@ impl Template {
     /// Reads a template from TOML text, checking every placeholder.
     pub fn from_toml(text: &str) -> Result<Self, NcError> {
         let f: TemplateFile = toml::from_str(text).map_err(|e| {
-            let msg = e.message().to_string();
-            match e.span() {
-                Some(span) => {
-                    let line = text[..span.start.min(text.len())].matches('\n').count() + 1;
-                    NcError::Template(format!("line {line}: {msg}"))
-                }
-                None => NcError::Template(msg),
-            }
+            let at = e.span().map(|span| span.start.min(text.len()));
+            NcError::template(TemplateProblem::Toml {
+                line: at.map(|at| text[..at].matches('\n').count() + 1),
+                message: syntax_message(e.message(), text, at.unwrap_or(text.len())),
+            })
         })?;
         for (field, d) in [
             ("decimals_mm", f.decimals_mm),
             ("decimals_deg", f.decimals_deg),
         ] {
             if d > 9 {
-                return Err(NcError::Template(format!(
-                    "{field} = {d}: at most 9 decimals"
-                )));
+                return Err(NcError::template(TemplateProblem::Decimals {
+                    field,
+                    decimals: d,
+                }));
             }
         }
         let letters = f.axis_letters.as_ref();
@@ -241,7 +241,13 @@ impl Template {
             message: e.to_string(),
         })?;
         Self::from_toml(&text).map_err(|e| match e {
-            NcError::Template(m) => NcError::Template(format!("{}: {m}", path.display())),
+            NcError::Template {
+                file: None,
+                problem,
+            } => NcError::Template {
+                file: Some(path.display().to_string()),
+                problem,
+            },
             e => e,
         })
     }
@@ -301,13 +307,11 @@ fn parse_field(
             rest = r;
         } else {
             let Some(end) = tail.find('}') else {
-                return Err(NcError::Template(format!(
-                    "field `{name}`: `{{` without a closing `}}`"
-                )));
+                return Err(NcError::template(TemplateProblem::Unclosed { field: name }));
             };
             let ph = &tail[1..end];
             let unknown = || NcError::UnknownPlaceholder {
-                placeholder: ph.to_string(),
+                placeholder: excerpt(ph),
                 field: name.to_string(),
                 allowed: scope.allowed().to_string(),
             };

@@ -5,8 +5,8 @@
 mod common;
 
 use formcam_nc::{
-    AxisSpec, Block, Dialect, Feed, NcError, Program, Template, read_cldata, read_gcode, write,
-    write_template,
+    AxisSpec, Block, Dialect, Feed, NcError, Program, Template, ToolpathOptions, read_cldata,
+    read_gcode, read_toolpath, write, write_template,
 };
 
 #[test]
@@ -154,4 +154,42 @@ fn unreadable_cldata_lines() {
         let e = read_cldata(text, &axes).unwrap_err();
         assert_eq!(line_of(e.clone()), line, "{text:?}: {e}");
     }
+}
+
+/// A line of 10 MB with ESC and NUL bytes in it.
+fn hostile_line() -> String {
+    format!("G1 X1 \u{1b}[2J\0{} F100", "Q#".repeat(5 << 20))
+}
+
+/// A message short enough to read, with no raw control character.
+fn assert_short_and_escaped(m: &str) {
+    assert!(m.chars().count() < 400, "{} characters", m.chars().count());
+    assert!(!m.chars().any(char::is_control), "{m:?}");
+    assert!(m.contains("\\u{1b}[2J\\0"), "{m}");
+    assert!(m.contains('…'), "{m}");
+}
+
+#[test]
+fn a_huge_gcode_line_is_quoted_short_and_escaped() {
+    let text = format!("G0 X0\n{}\n", hostile_line());
+    let axes = [AxisSpec::linear("X")];
+    let e = read_gcode(&text, &axes).unwrap_err();
+    assert_eq!(line_of(e.clone()), 2);
+    assert_short_and_escaped(&e.to_string());
+    let e = read_toolpath(&text, &ToolpathOptions::default()).unwrap_err();
+    assert_eq!(line_of(e.clone()), 2);
+    assert_short_and_escaped(&e.to_string());
+}
+
+#[test]
+fn a_template_cut_after_its_equals_sign_says_a_value_is_expected() {
+    for text in ["extension = \"x\"\nblock =", "extension = \"x\"\nblock =\n"] {
+        let e = Template::from_toml(text).unwrap_err();
+        let m = e.to_string();
+        let said = m.split_once("line 2:").map(|(_, said)| said.trim());
+        assert!(said.is_some_and(|s| s.len() > 5), "{m}");
+    }
+    let e = Template::from_toml("extension = \"x\0\"\n").unwrap_err();
+    assert!(!e.to_string().ends_with(": "), "{e}");
+    assert!(!e.to_string().contains('\0'), "{e}");
 }

@@ -125,20 +125,20 @@ pub fn displacement_svg(
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (1000, 800)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+        root.fill(&WHITE).map_err(|e| err(e.into()))?;
         let root = root
             .titled(
                 "Node displacement along the surface normal",
                 ("sans-serif", 18),
             )
-            .map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
         let (map, bar) = root.split_horizontally(880);
         let mut chart = ChartBuilder::on(&map)
             .margin(10)
             .x_label_area_size(35)
             .y_label_area_size(60)
             .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
-            .map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
         chart
             .configure_mesh()
             .x_desc("x, mm")
@@ -146,7 +146,7 @@ pub fn displacement_svg(
             .x_label_formatter(&fx)
             .y_label_formatter(&fy)
             .draw()
-            .map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
         let (unchanged, moved): (Vec<_>, Vec<_>) = pts
             .iter()
             .partition(|p| matches!(p.3, Placement::Outside | Placement::Unknown));
@@ -156,7 +156,7 @@ pub fn displacement_svg(
                     .iter()
                     .map(|&&(x, y, d, _)| Circle::new((x, y), 2, colour(d).filled())),
             )
-            .map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
         if !unchanged.is_empty() {
             chart
                 .draw_series(
@@ -164,7 +164,7 @@ pub fn displacement_svg(
                         .iter()
                         .map(|p| Circle::new((p.0, p.1), 2, grey.filled())),
                 )
-                .map_err(|e| err(e.to_string()))?
+                .map_err(|e| err(e.into()))?
                 .label("node left unchanged (outside the measured area)")
                 .legend(move |(x, y)| Circle::new((x + 10, y), 3, grey.filled()));
         }
@@ -174,7 +174,7 @@ pub fn displacement_svg(
                     .iter()
                     .map(|q| Circle::new((q[0], q[1]), 2, BLACK.filled())),
             )
-            .map_err(|e| err(e.to_string()))?
+            .map_err(|e| err(e.into()))?
             .label("measured point")
             .legend(|(x, y)| Circle::new((x + 10, y), 3, BLACK.filled()));
         chart
@@ -182,7 +182,7 @@ pub fn displacement_svg(
             .border_style(BLACK)
             .background_style(WHITE.mix(0.8))
             .draw()
-            .map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
         // The colour bar: the displacement each colour stands for.
         let mut scale = ChartBuilder::on(&bar)
             .margin_top(10)
@@ -190,7 +190,7 @@ pub fn displacement_svg(
             .margin_right(5)
             .y_label_area_size(70)
             .build_cartesian_2d(0.0..1.0, -lim..lim)
-            .map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
         scale
             .configure_mesh()
             .disable_x_mesh()
@@ -199,7 +199,7 @@ pub fn displacement_svg(
             .y_desc("displacement, mm")
             .y_label_formatter(&fbar)
             .draw()
-            .map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
         let steps = 100;
         scale
             .draw_series((0..steps).map(|k| {
@@ -207,8 +207,8 @@ pub fn displacement_svg(
                 let b = -lim + 2.0 * lim * (k + 1) as f64 / steps as f64;
                 Rectangle::new([(0.0, a), (1.0, b)], colour(0.5 * (a + b)).filled())
             }))
-            .map_err(|e| err(e.to_string()))?;
-        root.present().map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
+        root.present().map_err(|e| err(e.into()))?;
     }
     Ok(svg.into_bytes())
 }
@@ -271,7 +271,7 @@ pub fn convergence_svg(r: &LoopResult) -> Result<Vec<u8>, PlotError> {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (800, 500)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+        root.fill(&WHITE).map_err(|e| err(e.into()))?;
         let mut chart = ChartBuilder::on(&root)
             .caption(
                 "Closed loop: deviation of the part per round",
@@ -281,7 +281,7 @@ pub fn convergence_svg(r: &LoopResult) -> Result<Vec<u8>, PlotError> {
             .x_label_area_size(35)
             .y_label_area_size(70)
             .build_cartesian_2d(-0.2..(n as f64 - 0.8), (lo..hi).log_scale())
-            .map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
         // Rounds are whole numbers: at most one label per round, no minor
         // lines between them.
         let round = |v: &f64| format!("{v:.0}");
@@ -293,25 +293,25 @@ pub fn convergence_svg(r: &LoopResult) -> Result<Vec<u8>, PlotError> {
             .x_max_light_lines(1)
             .x_label_formatter(&round)
             .draw()
-            .map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
         for (name, pts, color) in lines {
             let pts: Vec<(f64, f64)> = pts.into_iter().map(|(x, y)| (x, y.max(lo))).collect();
             chart
                 .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
-                .map_err(|e| err(e.to_string()))?
+                .map_err(|e| err(e.into()))?
                 .label(name)
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
             chart
                 .draw_series(pts.into_iter().map(|p| Circle::new(p, 3, color.filled())))
-                .map_err(|e| err(e.to_string()))?;
+                .map_err(|e| err(e.into()))?;
         }
         chart
             .configure_series_labels()
             .border_style(BLACK)
             .background_style(WHITE.mix(0.8))
             .draw()
-            .map_err(|e| err(e.to_string()))?;
-        root.present().map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
+        root.present().map_err(|e| err(e.into()))?;
     }
     Ok(svg.into_bytes())
 }

@@ -25,7 +25,7 @@ pub fn profile_svg(title: &str, d: &Dressing) -> Result<Vec<u8>, PlotError> {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+        root.fill(&WHITE).map_err(|e| err(e.into()))?;
         let mut chart = ChartBuilder::on(&root)
             .caption(
                 format!("{title}: wheel profile and dresser trajectories"),
@@ -35,17 +35,17 @@ pub fn profile_svg(title: &str, d: &Dressing) -> Result<Vec<u8>, PlotError> {
             .x_label_area_size(35)
             .y_label_area_size(45)
             .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
         chart
             .configure_mesh()
             .x_desc("Z (along the wheel's axis), mm")
             .y_desc("X (radial), mm")
             .draw()
-            .map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
         for (label, data, colour) in series {
             chart
                 .draw_series(LineSeries::new(data, colour.stroke_width(2)))
-                .map_err(|e| err(e.to_string()))?
+                .map_err(|e| err(e.into()))?
                 .label(label)
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour));
         }
@@ -55,8 +55,8 @@ pub fn profile_svg(title: &str, d: &Dressing) -> Result<Vec<u8>, PlotError> {
             .border_style(BLACK)
             .background_style(WHITE.mix(0.85))
             .draw()
-            .map_err(|e| err(e.to_string()))?;
-        root.present().map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
+        root.present().map_err(|e| err(e.into()))?;
     }
     Ok(svg.into_bytes())
 }

@@ -2,7 +2,7 @@
 
 use plotters::prelude::*;
 
-use crate::PlotError;
+use crate::{PlotError, PlotFault};
 
 /// One line: legend label (empty, or one shown before in the panel: no new
 /// legend entry), points, colour.
@@ -12,10 +12,10 @@ pub type Series = (String, Vec<(f64, f64)>, RGBColor);
 pub type Panel = (&'static str, &'static str, Vec<Series>);
 
 /// Maps a plotting error to one naming the file.
-pub fn svg_err(file: &str) -> impl Fn(String) -> PlotError + '_ {
-    move |message| PlotError {
+pub fn svg_err(file: &str) -> impl Fn(PlotFault) -> PlotError + '_ {
+    move |fault| PlotError {
         file: file.to_string(),
-        message,
+        fault,
     }
 }
 
@@ -69,10 +69,10 @@ pub fn panels_svg(file: &str, title: &str, panels: Vec<Panel>) -> Result<Vec<u8>
     {
         let root =
             SVGBackend::with_string(&mut svg, (900, 300 * panels.len() as u32)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+        root.fill(&WHITE).map_err(|e| err(e.into()))?;
         let root = root
             .titled(title, ("sans-serif", 20))
-            .map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
         let areas = root.split_evenly((panels.len(), 1));
         for (area, (xlabel, ylabel, series)) in areas.iter().zip(panels) {
             let (x0, x1) = range(series.iter().flat_map(|s| s.1.iter().map(|q| q.0)));
@@ -83,7 +83,7 @@ pub fn panels_svg(file: &str, title: &str, panels: Vec<Panel>) -> Result<Vec<u8>
                 .x_label_area_size(35)
                 .y_label_area_size(70)
                 .build_cartesian_2d(x0..x1, y0..y1)
-                .map_err(|e| err(e.to_string()))?;
+                .map_err(|e| err(e.into()))?;
             chart
                 .configure_mesh()
                 .x_desc(xlabel)
@@ -91,12 +91,12 @@ pub fn panels_svg(file: &str, title: &str, panels: Vec<Panel>) -> Result<Vec<u8>
                 .x_label_formatter(&fx)
                 .y_label_formatter(&fy)
                 .draw()
-                .map_err(|e| err(e.to_string()))?;
+                .map_err(|e| err(e.into()))?;
             let mut shown: Vec<String> = Vec::new();
             for (label, data, color) in series {
                 let drawn = chart
                     .draw_series(LineSeries::new(data, color.stroke_width(2)))
-                    .map_err(|e| err(e.to_string()))?;
+                    .map_err(|e| err(e.into()))?;
                 if !label.is_empty() && !shown.contains(&label) {
                     drawn
                         .label(label.clone())
@@ -109,9 +109,9 @@ pub fn panels_svg(file: &str, title: &str, panels: Vec<Panel>) -> Result<Vec<u8>
                 .border_style(BLACK)
                 .background_style(WHITE.mix(0.8))
                 .draw()
-                .map_err(|e| err(e.to_string()))?;
+                .map_err(|e| err(e.into()))?;
         }
-        root.present().map_err(|e| err(e.to_string()))?;
+        root.present().map_err(|e| err(e.into()))?;
     }
     Ok(svg.into_bytes())
 }

@@ -517,9 +517,9 @@ pub fn in_layer(layer: usize, e: WindingError) -> WindingError {
             field: rename(field),
             reason,
         },
-        WindingError::Shooting(reason) => WindingError::Infeasible {
-            field: format!("layer[{layer}].mu = \"auto\""),
-            reason,
+        WindingError::Shooting { fault, .. } => WindingError::Shooting {
+            layer: Some(layer),
+            fault,
         },
         other => other,
     }

@@ -257,7 +257,11 @@ impl WindJob {
             ProgramError::Syntax {
                 line,
                 column,
-                message: e.message().replace('\n', " "),
+                message: formcam_files::syntax_message(
+                    e.message(),
+                    text,
+                    e.span().map_or(text.len(), |s| s.start),
+                ),
             }
         })?;
         let layers = match (file.winding, file.layer) {

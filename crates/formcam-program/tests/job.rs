@@ -150,3 +150,38 @@ fn every_winding_example_reads_and_names_its_furthest_stage() {
     }
     assert!(seen >= 10, "{seen}");
 }
+
+/// The message after `line:column: ` of a job's syntax error.
+fn syntax_message(text: &str) -> String {
+    let e = WindJob::from_toml(text, std::path::Path::new(".")).unwrap_err();
+    assert!(e.is_syntax(), "{e}");
+    let shown = e.to_string();
+    let said = shown.splitn(3, ':').nth(2).unwrap_or_default().trim();
+    assert!(!said.is_empty(), "an empty message: {shown:?}");
+    assert!(!shown.chars().any(char::is_control), "{shown:?}");
+    said.to_string()
+}
+
+#[test]
+fn a_job_cut_after_its_equals_sign_says_a_value_is_expected() {
+    let whole = "[mandrel]\nkind = \"cylinder\"\nradius = 50.0\nlength = 200.0\n";
+    for cut in [
+        "[mandrel]\nkind = \"cylinder\"\nradius =",
+        "[mandrel]\nkind = \"cylinder\"\nradius =\n",
+        "[mandrel]\nkind = \"cylinder\"\nradius =   \nlength = 200.0\n",
+    ] {
+        assert!(
+            WindJob::from_toml(whole, std::path::Path::new(".")).is_err_and(|e| !e.is_syntax())
+        );
+        let said = syntax_message(cut);
+        assert!(said.contains("expected"), "{cut:?}: {said}");
+    }
+}
+
+#[test]
+fn a_job_with_a_nul_says_nul_is_not_allowed() {
+    let said = syntax_message("[mandrel]\nkind = \"cylinder\"\nradius = 50.0\0\n");
+    assert!(said.contains("NUL"), "{said}");
+    let said = syntax_message("[mandrel]\nkind = \"cyl\0inder\"\n");
+    assert!(said.contains("NUL") || said.contains("\\0"), "{said}");
+}

@@ -151,10 +151,10 @@ fn read_initial(path: &Path) -> Result<Vec<Point>, RunError> {
         )
     })?;
     formcam_dress::read_contour(&text).map_err(|e| match e {
-        DressError::ContourLine { line, message } => dress_error(
+        DressError::ContourLine { line, problem } => dress_error(
             path,
             &format!(":{line}"),
-            format!("process.initial_contour: {message}"),
+            format!("process.initial_contour: {problem}"),
         ),
         e => dress_error(path, "", e.to_string()),
     })

@@ -141,11 +141,12 @@ impl SchemaError {
 /// then by place in the text.
 pub fn validate(schema: &JobSchema, text: &str) -> Result<(), SchemaError> {
     let doc = ImDocument::parse(text).map_err(|e| {
-        let (line, column) = line_col(text, e.span().map_or(0, |s| s.start));
+        let at = e.span().map_or(0, |s| s.start);
+        let (line, column) = line_col(text, at);
         SchemaError::Syntax {
             line,
             column,
-            message: e.message().replace('\n', " "),
+            message: formcam_files::syntax_message(e.message(), text, at),
         }
     })?;
     let mut check = Checker {

@@ -24,8 +24,13 @@ pub enum WindingError {
         reason: String,
     },
     /// Shooting for the slippage did not converge.
-    #[error("winding.mu = \"auto\": {0}")]
-    Shooting(String),
+    #[error("{}.mu = \"auto\": {fault}", table(.layer))]
+    Shooting {
+        /// The layer (1-based) of a multi-layer job; `None`: `[winding]`.
+        layer: Option<usize>,
+        /// Why no slippage was found.
+        fault: ShootingFault,
+    },
     /// The ODE integrator could not resolve the path.
     #[error("path integration failed near z = {z:.3} mm: {reason}")]
     Integration {
@@ -36,7 +41,58 @@ pub enum WindingError {
     },
 }
 
+/// Why shooting found no constant slippage.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum ShootingFault {
+    /// The root was bracketed but the path does not turn where it should.
+    #[error(
+        "shooting did not converge: the path turns at z = {z_turn:.6} mm instead of {z_far:.6} mm"
+    )]
+    NotConverged {
+        /// Where the path turns, mm.
+        z_turn: f64,
+        /// Where it should turn, mm.
+        z_far: f64,
+    },
+    /// No slippage within the limit reaches the far opening.
+    #[error(
+        "no constant slippage with |mu| <= {mu_limit} makes the path end tangent to the far polar \
+         opening (closest miss {miss_mm:+.3} mm at mu = {mu}); try mu_segments or a larger mu_limit"
+    )]
+    NoSlippage {
+        /// `winding.mu_limit`.
+        mu_limit: f64,
+        /// The closest miss, mm.
+        miss_mm: f64,
+        /// The slippage of the closest miss.
+        mu: f64,
+    },
+    /// Neither shooting nor the minimax path (tried after it) lays the pass.
+    #[error(
+        "no constant slippage within mu_limit = {mu_limit} meets both polar openings, and {minimax}"
+    )]
+    NorMinimax {
+        /// `winding.mu_limit`.
+        mu_limit: f64,
+        /// Why the minimax path failed.
+        minimax: Box<WindingError>,
+    },
+}
+
+/// The table owning `mu`: `winding` or `layer[N]`.
+fn table(layer: &Option<usize>) -> String {
+    match layer {
+        Some(n) => format!("layer[{n}]"),
+        None => "winding".to_string(),
+    }
+}
+
 impl WindingError {
+    /// A shooting failure of a `[winding]` job.
+    pub fn shooting(fault: ShootingFault) -> Self {
+        Self::Shooting { layer: None, fault }
+    }
+
     /// A field error.
     pub fn field(field: impl Into<String>, reason: impl Into<String>) -> Self {
         Self::Field {

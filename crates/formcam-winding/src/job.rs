@@ -10,6 +10,7 @@
 use std::fmt;
 use std::str::FromStr;
 
+use formcam_files::quote;
 use formcam_geom::{Cone, Cylinder, DomeShape, GeomError, Jet, Meridian, Tabulated, Vessel};
 use formcam_schema::{
     Condition, Default as Given, Field, Kind, Range, Repeat, Table, Unit, Value, field,
@@ -231,7 +232,10 @@ impl FromStr for LayerKind {
             .into_iter()
             .find(|k| k.name() == s)
             .ok_or_else(|| {
-                format!("kind: \"{s}\" is not a layer kind; allowed: helical, hoop, skip")
+                format!(
+                    "kind: \"{}\" is not a layer kind; allowed: helical, hoop, skip",
+                    quote(s)
+                )
             })
     }
 }
@@ -523,7 +527,8 @@ impl WindingSpec {
                     return Err(WindingError::field(
                         "winding.mu",
                         format!(
-                            "\"{other}\" is not a slippage; allowed: a number, \"auto\", \"minimax\""
+                            "\"{}\" is not a slippage; allowed: a number, \"auto\", \"minimax\"",
+                            quote(other)
                         ),
                     ));
                 }
@@ -535,7 +540,7 @@ impl WindingSpec {
             Some(other) => {
                 return Err(WindingError::field(
                     "winding.kind",
-                    format!("\"{other}\" is not a layer kind here (helical or hoop)"),
+                    format!("\"{}\" is not a layer kind here (helical or hoop)", other),
                 ));
             }
         };
@@ -627,8 +632,9 @@ impl WindingSpec {
                 return Err(WindingError::field(
                     "winding.turnaround",
                     format!(
-                        "\"{other}\" is not a turn-around; allowed: \"extension\" (beyond the tube's \
-                         ends), \"friction\" (on the tube, held by mu)"
+                        "\"{}\" is not a turn-around; allowed: \"extension\" (beyond the tube's \
+                         ends), \"friction\" (on the tube, held by mu)",
+                        quote(other)
                     ),
                 ));
             }
@@ -746,7 +752,8 @@ impl EyeJob {
                 return Err(WindingError::field(
                     "eye.mode",
                     format!(
-                        "unknown mode \"{other}\"; allowed: axis-parallel, equidistant, curve, pull-speed"
+                        "unknown mode \"{}\"; allowed: axis-parallel, equidistant, curve, pull-speed",
+                        quote(other)
                     ),
                 ));
             }

@@ -11,7 +11,7 @@ use crate::minimax::{bridging_limit, minimax};
 use crate::path::{PassEnd, TANGENT_ALPHA_TOL, TraceOptions, trace};
 use crate::pattern::{Pattern, PatternRequest, choose_pattern};
 use crate::shooting::{Shot, shoot};
-use crate::{MuLaw, MuSegment, PathPoint, WindingError};
+use crate::{MuLaw, MuSegment, PathPoint, ShootingFault, WindingError};
 
 /// How the slippage of the path is chosen.
 #[derive(Debug, Clone, PartialEq)]
@@ -610,10 +610,10 @@ fn minimax_pass<M: Meridian>(
     let (za, zb) = m.z_range();
     let mm = minimax(m, spec.minimax_nodes, spec.mu_limit).map_err(|e| {
         if spec.slippage == Slippage::Auto && choice.shot.is_none() {
-            WindingError::Shooting(format!(
-                "no constant slippage within mu_limit = {} meets both polar openings, and {e}",
-                spec.mu_limit
-            ))
+            WindingError::shooting(ShootingFault::NorMinimax {
+                mu_limit: spec.mu_limit,
+                minimax: Box::new(e),
+            })
         } else {
             e
         }

@@ -27,7 +27,7 @@ mod shooting;
 mod slippage;
 
 pub use circuit::{Circuit, CircuitPoint, PassPath, Turnaround};
-pub use error::WindingError;
+pub use error::{ShootingFault, WindingError};
 pub use friction::{FrictionTurns, friction_turns};
 pub use layer::{
     Ends, Layer, LayerReport, LayerSpec, Method, PassSummary, Slippage, TubeTurn, plan_layer,

@@ -8,7 +8,7 @@ use formcam_geom::Meridian;
 use crate::ode::Tolerance;
 use crate::ode::{find_root, find_root_known};
 use crate::path::{PassEnd, Trace, TraceOptions, trace};
-use crate::{MuLaw, WindingError};
+use crate::{MuLaw, ShootingFault, WindingError};
 
 /// The result of shooting.
 #[derive(Debug, Clone)]
@@ -116,9 +116,10 @@ pub fn shoot<M: Meridian>(m: &M, mu_limit: f64) -> Result<Shot, WindingError> {
     let z_turn = tr.z_last();
     let residual_mm = far_residual(m, &tr, zb);
     if (z_turn - zb).abs() > 1e-6 {
-        return Err(WindingError::Shooting(format!(
-            "shooting did not converge: the path turns at z = {z_turn:.6} mm instead of {zb:.6} mm"
-        )));
+        return Err(WindingError::shooting(ShootingFault::NotConverged {
+            z_turn,
+            z_far: zb,
+        }));
     }
     Ok(Shot {
         mu,
@@ -184,11 +185,11 @@ fn bracket(
         }
         step *= 2.0;
     }
-    Err(WindingError::Shooting(format!(
-        "no constant slippage with |mu| <= {mu_limit} makes the path end tangent to the far \
-         polar opening (closest miss {:+.3} mm at mu = {}); try mu_segments or a larger mu_limit",
-        closest.1, closest.0
-    )))
+    Err(WindingError::shooting(ShootingFault::NoSlippage {
+        mu_limit,
+        miss_mm: closest.1,
+        mu: closest.0,
+    }))
 }
 
 /// `|r(z_end) - C(z_end)|` from a traced pass that turns at or near `z_end`.

@@ -2,6 +2,7 @@
 //! applied to the modal state, its move turned into nodes (arcs and long
 //! moves in pieces) — and the number style it was written in.
 
+use formcam_files::quote;
 use std::ops::Range;
 
 use super::arc::{Arc, Centre};
@@ -10,7 +11,7 @@ use super::{
 };
 use crate::lex::{self, Lexed, Syntax, Word, line_error};
 use crate::modal::{GCode, Modal, MotionMode};
-use crate::{Dialect, NcError};
+use crate::{Dialect, NcError, ProgramFault};
 
 /// Reads a milling program.
 pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, NcError> {
@@ -44,23 +45,18 @@ pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, 
 
 fn check_options(options: &ToolpathOptions) -> Result<(), NcError> {
     if options.dialect == Dialect::Cldata {
-        return Err(NcError::program(
-            "CLDATA is no G-code: a milling program is read as iso, sinumerik-840d, linuxcnc \
-             or marlin-xab",
-        ));
+        return Err(ProgramFault::CldataToolpath.into());
     }
     if let Some(m) = options.max_segment_mm
         && !(m.is_finite() && m > 0.0)
     {
-        return Err(NcError::program(format!(
-            "largest segment {m} mm: must be > 0"
-        )));
+        return Err(ProgramFault::SegmentNotPositive { mm: m }.into());
     }
     if !(options.arc_tolerance_mm.is_finite() && options.arc_tolerance_mm > 0.0) {
-        return Err(NcError::program(format!(
-            "arc tolerance {} mm: must be > 0",
-            options.arc_tolerance_mm
-        )));
+        return Err(ProgramFault::ArcToleranceNotPositive {
+            mm: options.arc_tolerance_mm,
+        }
+        .into());
     }
     Ok(())
 }
@@ -129,7 +125,7 @@ impl Reader<'_> {
                 && !program_number
                 && c.as_bytes().first().is_some_and(u8::is_ascii_alphabetic);
             if words.has_axis() || words.has_centre() || iso_ident {
-                return Err(err(format!("cannot read `{c}`")));
+                return Err(err(format!("cannot read `{}`", quote(c))));
             }
         }
         let mut line = Line {

@@ -8,7 +8,7 @@ use std::ops::Range;
 
 use super::{Line, MotionLine, Toolpath};
 use crate::num::{self, Out};
-use crate::{Dialect, NcError};
+use crate::{Dialect, NcError, ProgramFault};
 
 impl Toolpath {
     /// Writes the program with the nodes at `positions` (one per node, mm).
@@ -18,11 +18,11 @@ impl Toolpath {
     /// the printed precision) too.
     pub fn write(&self, positions: &[[f64; 3]], header: &[String]) -> Result<String, NcError> {
         if positions.len() != self.nodes.len() {
-            return Err(NcError::program(format!(
-                "{} positions for {} nodes",
-                positions.len(),
-                self.nodes.len()
-            )));
+            return Err(ProgramFault::PositionCount {
+                positions: positions.len(),
+                nodes: self.nodes.len(),
+            }
+            .into());
         }
         let t = &self.text;
         let mut w = Writer {

@@ -18,7 +18,7 @@ use std::f64::consts::{PI, TAU};
 use std::fmt;
 
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
-use nalgebra::{DMatrix, DVector, Dyn, Isometry3, Owned, Point3, Vector3};
+use nalgebra::{DMatrix, DVector, Dyn, Isometry3, Owned, Point3, Unit, Vector3};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -531,46 +531,54 @@ impl Lathe {
     /// Axis values for `t`, near `prev`.
     #[cfg(test)]
     fn solve(&self, t: &Target, prev: &[f64], q: &mut [f64]) {
-        self.raw(t, q);
-        self.unwrap(q, prev);
-    }
-
-    /// The axis values of every target, each row near the one before (the
-    /// first near home). The rows do not depend on each other but for the
-    /// turns the rotary axes take: they are solved in chunks on rayon's pool
-    /// (the same chunks whatever the number of threads), then each rotary
-    /// value is moved by whole turns to the one before, in order.
-    fn track(&self, targets: &[Target]) -> Vec<f64> {
-        const CHUNK: usize = 4096;
-        let w = self.home.len().max(1);
-        let mut values = vec![0.0; targets.len() * w];
-        values
-            .par_chunks_mut(CHUNK * w)
-            .zip(targets.par_chunks(CHUNK))
-            .for_each(|(rows, ts)| {
-                for (q, t) in rows.chunks_exact_mut(w).zip(ts) {
-                    self.raw(t, q);
-                }
-            });
-        let mut prev = self.home.clone();
-        for q in values.chunks_exact_mut(w) {
-            self.unwrap(q, &prev);
-            prev.copy_from_slice(q);
-        }
-        values
-    }
-
-    /// The rotary values of `q` (as [`Lathe::raw`] leaves them) moved by
-    /// whole turns (the eye: half turns) nearest `prev`.
-    fn unwrap(&self, q: &mut [f64], prev: &[f64]) {
         let sp = self.spindle.axis;
+        self.raw(t, q);
         q[sp] = unwrap_near(q[sp], prev[sp], TAU);
         if let Some((ei, _, _)) = self.eye {
+            self.eye_raw(t, q);
             q[ei] = unwrap_near(q[ei], prev[ei], PI);
         }
     }
 
-    /// Axis values for `t`, the rotary ones as offsets within a turn from home.
+    /// The axis values of every target, each row near the one before (the
+    /// first near home). The rows depend on each other only through the
+    /// turns of the rotary axes, so the work is split in phases: the axes of
+    /// every row in chunks on rayon's pool (the same chunks whatever the
+    /// number of threads), the spindle's turns in order, the eye's angle
+    /// (which reads the spindle's value) in chunks, its half turns in order.
+    /// Each value is the same number as solving the rows one after another.
+    fn track(&self, targets: &[Target]) -> Vec<f64> {
+        const CHUNK: usize = 4096;
+        let w = self.home.len().max(1);
+        let mut values = vec![0.0; targets.len() * w];
+        let in_chunks = |values: &mut [f64], f: &(dyn Fn(&Target, &mut [f64]) + Sync)| {
+            values
+                .par_chunks_mut(CHUNK * w)
+                .zip(targets.par_chunks(CHUNK))
+                .for_each(|(rows, ts)| {
+                    for (q, t) in rows.chunks_exact_mut(w).zip(ts) {
+                        f(t, q);
+                    }
+                });
+        };
+        let in_order = |values: &mut [f64], axis: usize, period: f64| {
+            let mut prev = self.home[axis];
+            for q in values.chunks_exact_mut(w) {
+                q[axis] = unwrap_near(q[axis], prev, period);
+                prev = q[axis];
+            }
+        };
+        in_chunks(&mut values, &|t, q| self.raw(t, q));
+        in_order(&mut values, self.spindle.axis, TAU);
+        if let Some((ei, _, _)) = self.eye {
+            in_chunks(&mut values, &|t, q| self.eye_raw(t, q));
+            in_order(&mut values, ei, PI);
+        }
+        values
+    }
+
+    /// The carriage, the cross feed and the spindle for `t`, the spindle as
+    /// home plus its turn within a turn.
     fn raw(&self, t: &Target, q: &mut [f64]) {
         let sp = &self.spindle;
         let k = sp.k;
@@ -595,27 +603,22 @@ impl Lathe {
             }
             None => self.p_perp,
         };
-        // The spindle's turn `delta` from home, its sine and cosine read off
-        // the same two products (no `sin_cos` of the angle).
-        let (sin, cos) = (k.dot(&d0_perp.cross(&p_perp)), d0_perp.dot(&p_perp));
-        let delta = sin.atan2(cos);
+        let delta = k.dot(&d0_perp.cross(&p_perp)).atan2(d0_perp.dot(&p_perp));
         q[sp.axis] = self.home[sp.axis] + delta;
-        if let Some((ei, w, a0)) = self.eye {
-            // The band turned with the mandrel (Rodrigues), read along the
-            // roller's axis at home and across it.
-            let h = sin.hypot(cos);
-            let (s, c) = if h > 0.0 {
-                (sin / h, cos / h)
-            } else {
-                (0.0, 1.0)
-            };
-            let b = self.mandrel0.rotation * t.band.into_inner();
-            let along = |u: &Vector3<f64>| {
-                c * u.dot(&b) + s * u.dot(&k.cross(&b)) + (1.0 - c) * k.dot(&b) * u.dot(&k)
-            };
-            let theta = (-along(&a0)).atan2(along(&w.cross(&a0)));
-            q[ei] = self.home[ei] + theta;
-        }
+    }
+
+    /// The eye's rotation for `t` at the spindle's value in `q`, as home plus
+    /// its angle within a half turn.
+    fn eye_raw(&self, t: &Target, q: &mut [f64]) {
+        let Some((ei, w, a0)) = self.eye else {
+            return;
+        };
+        let sp = &self.spindle;
+        let turn = q[sp.axis] - self.home[sp.axis];
+        let rot = nalgebra::UnitQuaternion::from_axis_angle(&Unit::new_unchecked(sp.k), turn);
+        let band = rot * (self.mandrel0.rotation * t.band.into_inner());
+        let theta = (-a0.dot(&band)).atan2(w.cross(&a0).dot(&band));
+        q[ei] = self.home[ei] + theta;
     }
 }
 
@@ -911,8 +914,6 @@ fn feasibility(m: &Machine, targets: &[Target], t: &AxisTrack) -> Vec<Issue> {
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used)]
-
-    use nalgebra::Unit;
 
     use super::*;
 

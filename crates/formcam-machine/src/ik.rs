@@ -22,6 +22,7 @@ use nalgebra::{DMatrix, DVector, Dyn, Isometry3, Owned, Point3, Unit, Vector3};
 use rayon::prelude::*;
 use serde::Serialize;
 
+use crate::chain::{Chain, Frame};
 use crate::file::{MachineKind, SpindleFollows};
 use crate::{Fk, IkFault, JointKind, Machine, MachineError, Target};
 
@@ -221,6 +222,20 @@ fn moves(m: &Machine) -> Vec<(bool, bool)> {
         .collect()
 }
 
+/// How many orientation equations `m` has.
+fn orientation_rows(m: &Machine) -> usize {
+    let roles = &m.roles;
+    match roles.kind {
+        // Beyond three driven axes (the spindle counted), one orientation
+        // equation per axis, at most the two of the eye roller.
+        MachineKind::Winder => match roles.roller_axis {
+            Some(_) => m.axes.len().saturating_sub(3).min(2),
+            None => 0,
+        },
+        MachineKind::Placement => 2 + usize::from(roles.roller_axis.is_some()),
+    }
+}
+
 /// At most six residuals, without allocating.
 #[derive(Debug, Clone, Copy)]
 struct Residuals {
@@ -270,19 +285,6 @@ impl<'a> Equations<'a> {
         }
     }
 
-    fn orientation_rows(&self) -> usize {
-        let roles = &self.m.roles;
-        match roles.kind {
-            // Beyond three driven axes (the spindle counted), one orientation
-            // equation per axis, at most the two of the eye roller.
-            MachineKind::Winder => match roles.roller_axis {
-                Some(_) => self.m.axes.len().saturating_sub(3).min(2),
-                None => 0,
-            },
-            MachineKind::Placement => 2 + usize::from(roles.roller_axis.is_some()),
-        }
-    }
-
     fn eval(&self, with_jacobian: bool) -> Evaluated {
         let m = self.m;
         let roles = &m.roles;
@@ -311,7 +313,7 @@ impl<'a> Equations<'a> {
             ],
             n: 3,
         };
-        let rows = self.orientation_rows();
+        let rows = orientation_rows(m);
         match roles.kind {
             MachineKind::Winder => {
                 if let Some(a) = roller {
@@ -525,7 +527,57 @@ impl Lathe {
     }
 
     /// Axis values for `t`, near `prev`.
+    #[cfg(test)]
     fn solve(&self, t: &Target, prev: &[f64], q: &mut [f64]) {
+        let sp = self.spindle.axis;
+        self.raw(t, q);
+        q[sp] = unwrap_near(q[sp], prev[sp], TAU);
+        if let Some((ei, _, _)) = self.eye {
+            self.eye_raw(t, q);
+            q[ei] = unwrap_near(q[ei], prev[ei], PI);
+        }
+    }
+
+    /// The axis values of every target, each row near the one before (the
+    /// first near home). The rows depend on each other only through the
+    /// turns of the rotary axes, so the work is split in phases: the axes of
+    /// every row in chunks on rayon's pool (the same chunks whatever the
+    /// number of threads), the spindle's turns in order, the eye's angle
+    /// (which reads the spindle's value) in chunks, its half turns in order.
+    /// Each value is the same number as solving the rows one after another.
+    fn track(&self, targets: &[Target]) -> Vec<f64> {
+        const CHUNK: usize = 4096;
+        let w = self.home.len().max(1);
+        let mut values = vec![0.0; targets.len() * w];
+        let in_chunks = |values: &mut [f64], f: &(dyn Fn(&Target, &mut [f64]) + Sync)| {
+            values
+                .par_chunks_mut(CHUNK * w)
+                .zip(targets.par_chunks(CHUNK))
+                .for_each(|(rows, ts)| {
+                    for (q, t) in rows.chunks_exact_mut(w).zip(ts) {
+                        f(t, q);
+                    }
+                });
+        };
+        let in_order = |values: &mut [f64], axis: usize, period: f64| {
+            let mut prev = self.home[axis];
+            for q in values.chunks_exact_mut(w) {
+                q[axis] = unwrap_near(q[axis], prev, period);
+                prev = q[axis];
+            }
+        };
+        in_chunks(&mut values, &|t, q| self.raw(t, q));
+        in_order(&mut values, self.spindle.axis, TAU);
+        if let Some((ei, _, _)) = self.eye {
+            in_chunks(&mut values, &|t, q| self.eye_raw(t, q));
+            in_order(&mut values, ei, PI);
+        }
+        values
+    }
+
+    /// The carriage, the cross feed and the spindle for `t`, the spindle as
+    /// home plus its turn within a turn.
+    fn raw(&self, t: &Target, q: &mut [f64]) {
         let sp = &self.spindle;
         let k = sp.k;
         let d0 = self.mandrel0 * t.point - sp.origin;
@@ -550,14 +602,21 @@ impl Lathe {
             None => self.p_perp,
         };
         let delta = k.dot(&d0_perp.cross(&p_perp)).atan2(d0_perp.dot(&p_perp));
-        q[sp.axis] = unwrap_near(self.home[sp.axis] + delta, prev[sp.axis], TAU);
-        if let Some((ei, w, a0)) = self.eye {
-            let turn = q[sp.axis] - self.home[sp.axis];
-            let rot = nalgebra::UnitQuaternion::from_axis_angle(&Unit::new_unchecked(k), turn);
-            let band = rot * (self.mandrel0.rotation * t.band.into_inner());
-            let theta = (-a0.dot(&band)).atan2(w.cross(&a0).dot(&band));
-            q[ei] = unwrap_near(self.home[ei] + theta, prev[ei], PI);
-        }
+        q[sp.axis] = self.home[sp.axis] + delta;
+    }
+
+    /// The eye's rotation for `t` at the spindle's value in `q`, as home plus
+    /// its angle within a half turn.
+    fn eye_raw(&self, t: &Target, q: &mut [f64]) {
+        let Some((ei, w, a0)) = self.eye else {
+            return;
+        };
+        let sp = &self.spindle;
+        let turn = q[sp.axis] - self.home[sp.axis];
+        let rot = nalgebra::UnitQuaternion::from_axis_angle(&Unit::new_unchecked(sp.k), turn);
+        let band = rot * (self.mandrel0.rotation * t.band.into_inner());
+        let theta = (-a0.dot(&band)).atan2(w.cross(&a0).dot(&band));
+        q[ei] = self.home[ei] + theta;
     }
 }
 
@@ -573,19 +632,33 @@ pub fn solve(m: &Machine, targets: &[Target], method: IkMethod) -> Result<AxisTr
             })
         })?),
     };
+    let values = match &lathe {
+        Some(l) => l.track(targets),
+        None => by_solver(m, spindle, targets),
+    };
+    let mut track = AxisTrack {
+        closed_form: lathe.is_some(),
+        values,
+        width: m.axes.len(),
+        residual_mm: Vec::new(),
+        residual_orientation: Vec::new(),
+        issues: Vec::new(),
+    };
+    (track.residual_mm, track.residual_orientation) = residuals(m, targets, &track.values);
+    track.issues = feasibility(m, targets, &track);
+    Ok(track)
+}
+
+/// The axis values of every target by the solver (Gauss–Newton, else
+/// Levenberg–Marquardt), seeded point after point: the spindle by its rule,
+/// the other axes from the path extrapolated through the two points before.
+fn by_solver(m: &Machine, spindle: Option<Spindle>, targets: &[Target]) -> Vec<f64> {
     let unknowns: Vec<usize> = (0..m.axes.len())
         .filter(|&a| Some(a) != spindle.map(|s| s.axis))
         .collect();
     let mut q = m.home();
     let mut prev = q.clone();
-    let mut track = AxisTrack {
-        closed_form: lathe.is_some(),
-        values: Vec::with_capacity(targets.len() * m.axes.len()),
-        width: m.axes.len(),
-        residual_mm: Vec::with_capacity(targets.len()),
-        residual_orientation: Vec::with_capacity(targets.len()),
-        issues: Vec::new(),
-    };
+    let mut values = Vec::with_capacity(targets.len() * m.axes.len());
     let lm = LevenbergMarquardt::new().with_tol(1e-15).with_patience(200);
     let moves = moves(m);
     let fk = Fk::new(m);
@@ -594,45 +667,37 @@ pub fn solve(m: &Machine, targets: &[Target], method: IkMethod) -> Result<AxisTr
     let mut before = q.clone();
     let mut poses = Vec::with_capacity(m.links.len());
     for (i, t) in targets.iter().enumerate() {
-        let first = i == 0;
-        if let Some(l) = &lathe {
-            l.solve(t, &prev, &mut q);
-        } else {
-            if let Some(sp) = &spindle {
-                fk_mandrel.poses_into(&q, &mut poses);
-                q[sp.axis] = sp.angle(t, &poses[m.roles.mandrel], q[sp.axis], prev[sp.axis]);
-            }
-            if !unknowns.is_empty() {
-                // Start from the path extrapolated through the two previous points.
-                let mut start = q.clone();
-                if i >= 2 {
-                    for &a in &unknowns {
-                        start[a] = 2.0 * prev[a] - before[a];
-                    }
-                }
-                q = match newton(equations(t, &start)) {
-                    Some(done) => done,
-                    None => lm.minimize(equations(t, &q)).0.q,
-                };
-                // Revolute joints: the turn nearest the previous point's.
+        if let Some(sp) = &spindle {
+            fk_mandrel.poses_into(&q, &mut poses);
+            q[sp.axis] = sp.angle(t, &poses[m.roles.mandrel], q[sp.axis], prev[sp.axis]);
+        }
+        if !unknowns.is_empty() {
+            // Start from the path extrapolated through the two previous points.
+            let mut start = q.clone();
+            if i >= 2 {
                 for &a in &unknowns {
-                    if m.axes[a].is_rotary() {
-                        q[a] = unwrap_near(q[a], prev[a], TAU);
-                    }
+                    start[a] = 2.0 * prev[a] - before[a];
                 }
-                if first {
-                    nearest_home_branch(m, t, &unknowns, &moves, &fk, &mut q);
+            }
+            q = match newton(equations(t, &start)) {
+                Some(done) => done,
+                None => lm.minimize(equations(t, &q)).0.q,
+            };
+            // Revolute joints: the turn nearest the previous point's.
+            for &a in &unknowns {
+                if m.axes[a].is_rotary() {
+                    q[a] = unwrap_near(q[a], prev[a], TAU);
                 }
+            }
+            if i == 0 {
+                nearest_home_branch(m, t, &unknowns, &moves, &fk, &mut q);
             }
         }
-        track.values.extend_from_slice(&q);
+        values.extend_from_slice(&q);
         before.clone_from(&prev);
         prev.clone_from(&q);
     }
-    (track.residual_mm, track.residual_orientation) =
-        residuals(m, targets, &track.values, &unknowns, &moves);
-    track.issues = feasibility(m, targets, &track);
-    Ok(track)
+    values
 }
 
 /// The position residual (mm) and the orientation residual (the largest of the
@@ -643,40 +708,25 @@ pub fn solve(m: &Machine, targets: &[Target], method: IkMethod) -> Result<AxisTr
 /// exact only where the point is reachable (a cross feed's discriminant
 /// clipped at zero, an eye turned as near as it goes), and a point checked at
 /// a sample would let such a stretch between samples pass unseen. The check
-/// is cheap instead: the forward kinematics is prepared once ([`Fk`]: rigid
-/// transforms composed in advance, only the payout point's and the mandrel's
-/// chains placed, one pose buffer per run, one `sin_cos` per turning joint)
-/// and gives the reference's poses bit for bit, so the residuals reported are
-/// exactly what the reference forward kinematics gives. Long trajectories are
+/// is cheap instead: the forward kinematics is specialised to the payout
+/// point's and the mandrel's chains ([`Chain`]: rotation matrices, whatever
+/// does not depend on the axes folded in advance, one `sin_cos` per turning
+/// joint), equal to the reference's poses to rounding. Long trajectories are
 /// checked in runs, one per worker of rayon's pool, each writing its own
 /// stretch of the two outputs.
-fn residuals(
-    m: &Machine,
-    targets: &[Target],
-    values: &[f64],
-    unknowns: &[usize],
-    moves: &[(bool, bool)],
-) -> (Vec<f64>, Vec<f64>) {
+fn residuals(m: &Machine, targets: &[Target], values: &[f64]) -> (Vec<f64>, Vec<f64>) {
     let width = m.axes.len().max(1);
     let n = targets.len().min(values.len() / width);
     let mut pos = vec![0.0; n];
     let mut ori = vec![0.0; n];
-    let fk = Fk::for_links(m, &[m.points[m.roles.payout].link, m.roles.mandrel]);
+    let chain = Chain::new(m, &[m.points[m.roles.payout].link, m.roles.mandrel]);
+    let rows = orientation_rows(m);
     let run = |ts: &[Target], values: &[f64], pos: &mut [f64], ori: &mut [f64]| {
-        let (Some(t0), Some(q0)) = (ts.first(), values.get(..width)) else {
-            return;
-        };
-        let mut check = Equations::new(m, t0, unknowns, moves, &fk, q0);
-        let rows = ts.iter().zip(values.chunks_exact(width));
-        for ((t, q), (p, o)) in rows.zip(pos.iter_mut().zip(ori.iter_mut())) {
-            check.t = t;
-            check.q.copy_from_slice(q);
-            let e = check.eval(false);
-            *p = (e.r[0] * e.r[0] + e.r[1] * e.r[1] + e.r[2] * e.r[2]).sqrt();
-            *o = e.r[3..]
-                .iter()
-                .map(|v| (v / ORIENTATION_SCALE).abs())
-                .fold(0.0, f64::max);
+        let mut frames = Vec::with_capacity(m.links.len());
+        let rows_of = ts.iter().zip(values.chunks_exact(width));
+        for ((t, q), (p, o)) in rows_of.zip(pos.iter_mut().zip(ori.iter_mut())) {
+            chain.frames_into(q, &mut frames);
+            (*p, *o) = point_residuals(m, rows, &frames, t);
         }
     };
     let threads = rayon::current_num_threads().min(n / 20_000).clamp(1, 16);
@@ -689,6 +739,47 @@ fn residuals(
             .zip(values.par_chunks(per * width))
             .zip(pos.par_chunks_mut(per).zip(ori.par_chunks_mut(per)))
             .for_each(|((ts, vs), (p, o))| run(ts, vs, p, o));
+    }
+    (pos, ori)
+}
+
+/// The position residual (mm) and the orientation residual (the largest of
+/// the equations' cosines) at target `t`, from the world frames of the
+/// payout point's and the mandrel's links: the residuals of [`Equations`],
+/// the orientation ones unscaled.
+fn point_residuals(m: &Machine, rows: usize, frames: &[Frame], t: &Target) -> (f64, f64) {
+    let roles = &m.roles;
+    let payout = &m.points[roles.payout];
+    let head = &frames[payout.link];
+    let mandrel = &frames[roles.mandrel];
+    let d = head.point(&payout.position) - mandrel.point(&t.point);
+    let pos = (d.x * d.x + d.y * d.y + d.z * d.z).sqrt();
+    let band = mandrel.rotation * t.band.into_inner();
+    let normal = mandrel.rotation * t.normal.into_inner();
+    let roller = roles.roller_axis.map(|a| head.rotation * a.into_inner());
+    let mut ori = 0.0_f64;
+    let mut put = |v: f64| ori = ori.max(v.abs());
+    match roles.kind {
+        MachineKind::Winder => {
+            if let Some(a) = roller {
+                if rows >= 1 {
+                    put(a.dot(&band));
+                }
+                if rows >= 2 {
+                    put(a.dot(&normal));
+                }
+            }
+        }
+        MachineKind::Placement => {
+            let n = roles
+                .head_normal
+                .map_or_else(Vector3::z, |a| head.rotation * a.into_inner());
+            put(n.dot(&band));
+            put(n.dot(&normal.cross(&band)));
+            if let Some(a) = roller {
+                put(a.dot(&band));
+            }
+        }
     }
     (pos, ori)
 }
@@ -821,6 +912,109 @@ mod tests {
     #![allow(clippy::unwrap_used)]
 
     use super::*;
+
+    proptest::proptest! {
+        /// The check's residuals are the equations' (the reference forward
+        /// kinematics) within 1e-9 mm and 1e-12 on random axis values and
+        /// targets, for every shipped machine.
+        #[test]
+        fn residuals_are_the_equations_ones(
+            u in proptest::collection::vec(-1.0..1.0_f64, 8),
+            p in proptest::collection::vec(-500.0..500.0_f64, 3),
+            b in proptest::collection::vec(-1.0..1.0_f64, 6),
+        ) {
+            for s in crate::shipped::SHIPPED {
+                let m = s.machine().unwrap();
+                let q: Vec<f64> = m
+                    .axes
+                    .iter()
+                    .zip(&u)
+                    .map(|(a, u)| if a.is_rotary() { 20.0 * u } else { 2000.0 * u })
+                    .collect();
+                let band = Vector3::new(b[0], b[1], b[2] + 2.0);
+                let normal = Vector3::new(b[3] + 2.0, b[4], b[5]);
+                let t = Target {
+                    x: 0.0,
+                    point: Point3::new(p[0], p[1], p[2]),
+                    path_point: Point3::new(p[0], p[1], p[2]),
+                    band: Unit::new_normalize(band),
+                    normal: Unit::new_normalize(normal),
+                    free_length: 0.0,
+                    clearance_margin: 0.0,
+                };
+                let unknowns: Vec<usize> = (0..m.axes.len()).collect();
+                let mv = moves(&m);
+                let fk = Fk::new(&m);
+                let e = Equations::new(&m, &t, &unknowns, &mv, &fk, &q).eval(false);
+                let pos = (e.r[0] * e.r[0] + e.r[1] * e.r[1] + e.r[2] * e.r[2]).sqrt();
+                let ori = e.r[3..]
+                    .iter()
+                    .map(|v| (v / ORIENTATION_SCALE).abs())
+                    .fold(0.0, f64::max);
+                let chain = Chain::new(&m, &[m.points[m.roles.payout].link, m.roles.mandrel]);
+                let mut frames = Vec::new();
+                chain.frames_into(&q, &mut frames);
+                let (p2, o2) = point_residuals(&m, orientation_rows(&m), &frames, &t);
+                proptest::prop_assert!((p2 - pos).abs() < 1e-9, "{}: {p2} vs {pos}", s.name);
+                proptest::prop_assert!((o2 - ori).abs() < 1e-12, "{}: {o2} vs {ori}", s.name);
+            }
+        }
+    }
+
+    proptest::proptest! {
+        /// The closed form recovers random axis values of the lathe-type
+        /// shipped winders from the target the reference forward kinematics
+        /// gives there (the eye's point, a band across the roller), within
+        /// 1e-9 mm and 1e-12 rad.
+        #[test]
+        fn closed_form_inverts_the_reference_kinematics(
+            u in proptest::collection::vec(-1.0..1.0_f64, 4),
+            d in proptest::collection::vec(-1.0..1.0_f64, 3),
+        ) {
+            for s in crate::shipped::SHIPPED {
+                let m = s.machine().unwrap();
+                let Some(lathe) = Lathe::detect(&m, Spindle::new(&m).unwrap()) else {
+                    continue;
+                };
+                let q: Vec<f64> = m
+                    .axes
+                    .iter()
+                    .zip(&u)
+                    .map(|(a, u)| match a.kind {
+                        JointKind::Revolute if Some(a.link) == m.roles.spindle.map(|s| m.axes[s].link) => 20.0 * u,
+                        JointKind::Revolute => 1.5 * u,
+                        _ => a.home + 0.5 * (a.max - a.min).min(1000.0) * (u + 1.0) / 2.0,
+                    })
+                    .collect();
+                let poses = m.poses(&q);
+                let mandrel = poses[m.roles.mandrel];
+                let payout = &m.points[m.roles.payout];
+                let p = poses[payout.link] * payout.position;
+                // A band across the roller (any band where the machine has no eye axis).
+                let across = m.roles.roller_axis.map_or(Vector3::new(d[0], d[1], d[2]), |a| {
+                    (poses[payout.link].rotation * a.into_inner()).cross(&Vector3::new(d[0], d[1], d[2]))
+                });
+                proptest::prop_assume!(across.norm() > 1e-3);
+                let band = mandrel.rotation.inverse() * across;
+                let point = mandrel.inverse_transform_point(&p);
+                let t = Target {
+                    x: 0.0,
+                    point,
+                    path_point: point,
+                    band: Unit::new_normalize(band),
+                    normal: Unit::new_normalize(band.cross(&Vector3::new(1.0, 2.0, 3.0))),
+                    free_length: 0.0,
+                    clearance_margin: 0.0,
+                };
+                let mut got = q.clone();
+                lathe.solve(&t, &q, &mut got);
+                for (a, (g, w)) in m.axes.iter().zip(got.iter().zip(&q)) {
+                    let tol = if a.is_rotary() { 1e-12 } else { 1e-9 };
+                    proptest::prop_assert!((g - w).abs() < tol, "{}: {got:?} vs {q:?}", s.name);
+                }
+            }
+        }
+    }
 
     /// The names `summary.json` and `[checks] allow` know.
     #[test]

@@ -9,6 +9,7 @@
 //! fixed. One link carries the mandrel frame, one key point is the payout point.
 
 mod band;
+mod chain;
 mod error;
 mod file;
 mod fk;

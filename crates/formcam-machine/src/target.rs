@@ -4,6 +4,7 @@
 use formcam_geom::Meridian;
 use formcam_winding::eye::EyeTrajectory;
 use nalgebra::{Point3, Unit, Vector3};
+use rayon::prelude::*;
 
 /// One point the machine must reach, in the mandrel frame (`z` the mandrel's
 /// axis, `x` its `v = 0` direction).
@@ -42,10 +43,12 @@ fn frame(z: f64, r: f64, v: f64, alpha: f64, dr: f64) -> (Point3<f64>, Vector3<f
     (Point3::new(r * cv, r * sv, z), tau, normal)
 }
 
-/// Targets of a winder: the eye points of `eye` (planned on `m`).
+/// Targets of a winder: the eye points of `eye` (planned on `m`), each on
+/// its own (in parallel on rayon's pool for long trajectories).
 pub fn winder_targets<M: Meridian>(m: &M, eye: &EyeTrajectory) -> Vec<Target> {
     eye.points
-        .iter()
+        .par_iter()
+        .with_min_len(4096)
         .map(|p| {
             let dr = m.eval(p.z).dr;
             let dr = if dr.is_finite() { dr } else { 0.0 };

@@ -48,39 +48,8 @@ allow = ["slack", "clearance", "l_max", "cyclicity", "reverse-rotation", "limits
 /// The eye keeps 10 mm: at the example's 20 mm an equidistant eye lets the
 /// band go slack at the second layer's turn-arounds, and the program would be
 /// refused.
-const VESSEL: &str = r#"
-[mandrel]
-kind = "vessel"
-radius = 100.0
-cylinder_length = 300.0
-dome = "hemisphere"
-polar_opening = 30.0
-
-[[layer]]
-kind = "hoop"
-band_width = 10.0
-band_thickness = 0.5
-
-[[layer]]
-band_width = 10.0
-band_thickness = 0.5
-
-[[layer]]
-band_width = 10.0
-band_thickness = 0.5
-
-[eye]
-mode = "equidistant"
-clearance = 10.0
-l_max = 400.0
-samples = 333334
-
-[machine]
-name = "winder-4axis"
-
-[post]
-dialect = "sinumerik-840d"
-"#;
+/// (`vessel-1e6.toml`, shared with the `vessel_1e6` example that profilers run.)
+const VESSEL: &str = include_str!("vessel-1e6.toml");
 
 fn layers() -> String {
     let hoop = "[[layer]]\nkind = \"hoop\"\nband_width = 8.0\nband_thickness = 0.3\n";

@@ -3,7 +3,6 @@
 //! `formcam correct simulate`: the closed loop. The work is
 //! `formcam_run`'s; here the arguments are read and the files written.
 
-use std::fs;
 use std::path::{Path, PathBuf};
 
 use formcam_correct::{

@@ -1,7 +1,7 @@
 use std::fmt;
 
-use formcam_schema::{Field, JobSchema, Range, SchemaError, Unit};
 use formcam_files::quote;
+use formcam_schema::{Field, JobSchema, Range, SchemaError, Unit};
 use thiserror::Error;
 
 use crate::{JobField, ScenarioField, Tool};
@@ -290,7 +290,11 @@ pub enum MeasureProblem {
     #[error("no actual point")]
     NoActualPoint,
     /// A point given twice.
-    #[error("point `{}` of section `{}` is given twice", quote(point), quote(section))]
+    #[error(
+        "point `{}` of section `{}` is given twice",
+        quote(point),
+        quote(section)
+    )]
     PointTwice {
         /// The section.
         section: String,
@@ -347,7 +351,10 @@ pub enum MeasureProblem {
         label: String,
     },
     /// A label that names no section and point.
-    #[error("DMIS label `{}`: name points `<section>_<point>` (e.g. `S1_P3`)", quote(label))]
+    #[error(
+        "DMIS label `{}`: name points `<section>_<point>` (e.g. `S1_P3`)",
+        quote(label)
+    )]
     LabelName {
         /// The label.
         label: String,

@@ -30,6 +30,31 @@ pub enum MachineError {
     /// A URDF document that cannot be read.
     #[error("URDF: {0}")]
     Urdf(#[from] UrdfFault),
+    /// A URDF document without the `<formcam>` element that holds what URDF
+    /// has no place for.
+    #[error(
+        "URDF: no <formcam> element: a URDF machine needs the [machine] table and the \
+         [[point]] key points, as TOML, in a <formcam> element inside <robot>"
+    )]
+    NoFormcamElement,
+    /// A URDF document's XML that cannot be read again for its `<formcam>`
+    /// element.
+    #[error("URDF: {message}")]
+    Xml {
+        /// The XML reader's reason.
+        message: String,
+    },
+    /// The TOML inside the `<formcam>` element is not valid or does not
+    /// match the format.
+    #[error("URDF: <formcam> {line}:{column}: {message}")]
+    FormcamElement {
+        /// Line inside the element (1-based; 0 when unknown).
+        line: usize,
+        /// Column of the error (1-based; 0 when unknown).
+        column: usize,
+        /// What is wrong.
+        message: String,
+    },
     /// The inverse kinematics cannot be set up for this machine and target.
     #[error("inverse kinematics: {0}")]
     Ik(#[from] IkFault),

@@ -385,22 +385,22 @@ struct FormcamRoles {
 /// The roles in the `<formcam>` element of a URDF document (already read by
 /// urdf-rs, so well-formed).
 fn formcam_roles(text: &str) -> Result<FormcamRoles, MachineError> {
-    let robot: rustyxml::Element = text
-        .parse()
-        .map_err(|e: rustyxml::BuilderError| MachineError::Urdf(e.to_string()))?;
-    let element = robot.get_child("formcam", None).ok_or_else(|| {
-        MachineError::Urdf(
-            "no <formcam> element: a URDF machine needs the [machine] table and the \
-             [[point]] key points, as TOML, in a <formcam> element inside <robot>"
-                .into(),
-        )
-    })?;
+    let robot: rustyxml::Element =
+        text.parse()
+            .map_err(|e: rustyxml::BuilderError| MachineError::Xml {
+                message: e.to_string(),
+            })?;
+    let element = robot
+        .get_child("formcam", None)
+        .ok_or(MachineError::NoFormcamElement)?;
     let roles = element.content_str();
     toml::from_str(&roles).map_err(|e| {
+        let at = e.span().map_or(roles.len(), |s| s.start);
         let (line, column) = e.span().map_or((0, 0), |s| line_col(&roles, s.start));
-        MachineError::Urdf(format!(
-            "<formcam> {line}:{column}: {}",
-            e.message().replace('\n', " ")
-        ))
+        MachineError::FormcamElement {
+            line,
+            column,
+            message: formcam_files::syntax_message(e.message(), &roles, at).replace('\n', " "),
+        }
     })
 }

@@ -614,39 +614,28 @@ pub const SCENARIO_JOB: JobSchema = JobSchema {
 mod tests {
     use super::*;
 
-    /// The keys a serde struct takes, from its message for an unknown one.
-    fn serde_keys<T: serde::de::DeserializeOwned + std::fmt::Debug>() -> Vec<String> {
-        let e = toml::from_str::<T>("zz_probe = 1")
-            .err()
-            .map(|e| e.to_string())
-            .unwrap_or_default();
-        let list = e.split("expected").nth(1).unwrap_or_default();
-        let mut keys: Vec<String> = list
-            .split('`')
-            .skip(1)
-            .step_by(2)
-            .map(str::to_string)
-            .collect();
-        keys.sort();
-        keys
-    }
-
-    fn described(t: &Table) -> Vec<String> {
-        let mut v: Vec<String> = t.fields.iter().map(|f| f.name.to_string()).collect();
-        v.sort();
-        v
-    }
-
     #[test]
     fn every_key_the_reader_takes_is_described_and_every_field_too() {
-        assert_eq!(serde_keys::<SurfaceTable>(), described(&SURFACE));
-        assert_eq!(serde_keys::<ProgramTable>(), described(&PROGRAM));
-        assert_eq!(serde_keys::<WarpTable>(), described(&WARP));
-        assert_eq!(serde_keys::<CmmTable>(), described(&CMM));
-        assert_eq!(serde_keys::<LoopTable>(), described(&LOOP));
+        assert_eq!(
+            formcam_schema::reader_keys::<SurfaceTable>(),
+            SURFACE.field_names()
+        );
+        assert_eq!(
+            formcam_schema::reader_keys::<ProgramTable>(),
+            PROGRAM.field_names()
+        );
+        assert_eq!(
+            formcam_schema::reader_keys::<WarpTable>(),
+            WARP.field_names()
+        );
+        assert_eq!(formcam_schema::reader_keys::<CmmTable>(), CMM.field_names());
+        assert_eq!(
+            formcam_schema::reader_keys::<LoopTable>(),
+            LOOP.field_names()
+        );
         let mut tables: Vec<String> = SCENARIO_JOB.tables.iter().map(|t| t.name.into()).collect();
         tables.sort();
-        assert_eq!(serde_keys::<ScenarioFile>(), tables);
+        assert_eq!(formcam_schema::reader_keys::<ScenarioFile>(), tables);
         for f in ScenarioField::ALL {
             assert_eq!(f.described().map(|d| d.name), Some(f.path().1), "{f}");
         }

@@ -576,46 +576,47 @@ mod tests {
     #![allow(clippy::unwrap_used)]
     use super::*;
 
-    /// The keys a serde struct takes, from its message for an unknown one.
-    fn serde_keys<T: serde::de::DeserializeOwned + std::fmt::Debug>() -> Vec<String> {
-        let e = toml::from_str::<T>("zz_probe = 1").unwrap_err().to_string();
-        let list = e.split("expected").nth(1).unwrap_or_default();
-        list.split('`')
-            .skip(1)
-            .step_by(2)
-            .map(str::to_string)
-            .collect()
-    }
-
-    fn described(t: &Table) -> Vec<String> {
-        let mut v: Vec<String> = t.fields.iter().map(|f| f.name.to_string()).collect();
-        v.sort();
-        v
-    }
-
     #[test]
     fn every_key_the_reader_takes_is_described() {
         let sorted = |mut v: Vec<String>| {
             v.sort();
             v
         };
-        assert_eq!(sorted(serde_keys::<MachineTable>()), described(&MACHINE));
-        assert_eq!(sorted(serde_keys::<PostTable>()), described(&POST));
-        assert_eq!(sorted(serde_keys::<MotionJob>()), described(&MOTION));
         assert_eq!(
-            sorted(serde_keys::<crate::checks::ChecksJob>()),
-            described(&CHECKS)
+            sorted(formcam_schema::reader_keys::<MachineTable>()),
+            MACHINE.field_names()
         );
-        assert_eq!(sorted(serde_keys::<MandrelSpec>()), described(&MANDREL));
-        assert_eq!(sorted(serde_keys::<EyeJob>()), described(&EYE));
-        assert_eq!(sorted(serde_keys::<WindingSpec>()), described(&LAYER));
+        assert_eq!(
+            sorted(formcam_schema::reader_keys::<PostTable>()),
+            POST.field_names()
+        );
+        assert_eq!(
+            sorted(formcam_schema::reader_keys::<MotionJob>()),
+            MOTION.field_names()
+        );
+        assert_eq!(
+            sorted(formcam_schema::reader_keys::<crate::checks::ChecksJob>()),
+            CHECKS.field_names()
+        );
+        assert_eq!(
+            sorted(formcam_schema::reader_keys::<MandrelSpec>()),
+            MANDREL.field_names()
+        );
+        assert_eq!(
+            sorted(formcam_schema::reader_keys::<EyeJob>()),
+            EYE.field_names()
+        );
+        assert_eq!(
+            sorted(formcam_schema::reader_keys::<WindingSpec>()),
+            LAYER.field_names()
+        );
         // `[winding]` is one layer: a skip layer's turn has no place there.
-        let mut winding = described(&WINDING);
+        let mut winding = WINDING.field_names();
         winding.push("mandrel_rotation_deg".into());
-        assert_eq!(sorted(winding), described(&LAYER));
+        assert_eq!(sorted(winding), LAYER.field_names());
         let mut tables: Vec<String> = WINDING_JOB.tables.iter().map(|t| t.name.into()).collect();
         tables.sort();
-        assert_eq!(sorted(serde_keys::<JobFile>()), tables);
+        assert_eq!(sorted(formcam_schema::reader_keys::<JobFile>()), tables);
     }
 
     #[test]

@@ -62,6 +62,33 @@ impl Table {
     pub fn field(&self, name: &str) -> Option<&'static Field> {
         self.fields.iter().find(|f| f.name == name)
     }
+
+    /// The names of its fields, sorted (to compare with [`reader_keys`]).
+    pub fn field_names(&self) -> Vec<String> {
+        let mut names: Vec<String> = self.fields.iter().map(|f| f.name.to_string()).collect();
+        names.sort();
+        names
+    }
+}
+
+/// The keys a serde-read table `T` takes, sorted, as its reader lists them
+/// when it refuses an unknown key: what tests compare with a description's
+/// [`Table::field_names`] so that a field added to one is added to the other.
+/// Empty when `T` takes any key.
+pub fn reader_keys<T: serde::de::DeserializeOwned>() -> Vec<String> {
+    let message = toml::from_str::<T>("zz_probe = 1")
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    let list = message.split("expected").nth(1).unwrap_or_default();
+    let mut keys: Vec<String> = list
+        .split('`')
+        .skip(1)
+        .step_by(2)
+        .map(str::to_string)
+        .collect();
+    keys.sort();
+    keys
 }
 
 /// A field of a table.

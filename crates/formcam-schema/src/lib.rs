@@ -14,7 +14,7 @@ mod validate;
 
 pub use describe::{
     Bound, Condition, Default, EmptyList, Field, JobSchema, Kind, Range, Repeat, Table, Unit,
-    Value, field,
+    Value, field, reader_keys,
 };
 pub use markdown::{MarkedError, markdown, replace_marked};
 pub use validate::{SchemaError, validate};

@@ -85,10 +85,6 @@ pub(crate) fn read_text(path: &Path) -> Result<String, CliError> {
     })
 }
 
-fn same_file(a: &Path, b: &Path) -> bool {
-    formcam_files::same_file(a, b)
-}
-
 /// Runs `formcam correct` (a job file, or the options on the command line);
 /// returns the one-line summary.
 pub fn run(a: &CorrectArgs) -> Result<String, CliError> {
@@ -184,7 +180,7 @@ fn guard_outputs(
     }
     for (flag, o) in outputs {
         for (what, input) in [("program", program), ("measurements", measurements)] {
-            if same_file(o, input) {
+            if formcam_files::same_file(o, input) {
                 return Err(CliError::Refused {
                     path: o.to_path_buf(),
                     flag,
@@ -194,7 +190,7 @@ fn guard_outputs(
         }
     }
     if let Some(r) = report
-        && same_file(r, output)
+        && formcam_files::same_file(r, output)
     {
         return Err(CliError::SameReport {
             path: r.to_path_buf(),
@@ -222,7 +218,7 @@ pub(crate) fn guard_job(
             ("program", &job.program),
             ("measurements", &job.measurements),
         ] {
-            if same_file(&o, input) {
+            if formcam_files::same_file(&o, input) {
                 return Err(CliError::RefusedByJob {
                     path: o,
                     what,

@@ -27,7 +27,7 @@ mod timeline;
 pub use error::SimError;
 pub use feed::FeedRule;
 pub use limits::{
-    AxisLimits, FEED_TOLERANCE, RESOLUTION_DEG, RESOLUTION_MM, Violation, ViolationKind,
+    AxisLimits, RELATIVE_TOLERANCE, RESOLUTION_DEG, RESOLUTION_MM, Violation, ViolationKind,
     check_timeline,
 };
 pub use pipeline::{CheckRun, check_files, check_text, program_axes, read_program};

@@ -15,9 +15,17 @@ pub const RESOLUTION_MM: f64 = 1e-3;
 /// The written resolution of a rotary axis word (4 decimals of a degree).
 pub const RESOLUTION_DEG: f64 = 1e-4;
 
-/// The relative tolerance on velocities, jumps and accelerations: the
-/// written feed's rounding (3 decimals of `F`).
-pub const FEED_TOLERANCE: f64 = 1e-4;
+/// The relative tolerance of the arithmetic on every limit.
+pub const RELATIVE_TOLERANCE: f64 = 1e-9;
+
+/// The written resolution of an axis word.
+pub(crate) fn resolution(rotary: bool) -> f64 {
+    if rotary {
+        RESOLUTION_DEG
+    } else {
+        RESOLUTION_MM
+    }
+}
 
 /// One axis's limits in NC units (mm or degrees, per second).
 #[derive(Debug, Clone, PartialEq)]
@@ -62,11 +70,7 @@ impl AxisLimits {
 
     /// The written resolution of the axis's values.
     fn resolution(&self) -> f64 {
-        if self.rotary {
-            RESOLUTION_DEG
-        } else {
-            RESOLUTION_MM
-        }
+        resolution(self.rotary)
     }
 }
 
@@ -249,9 +253,10 @@ impl Tally {
 /// * Acceleration: between neighbouring feed blocks, `|v_i - v_j| <= a_max
 ///   (t_i + t_j) / 2` (the planner's rule), where the machine gives `a_max`.
 ///
-/// Values within the written resolution ([`RESOLUTION_MM`],
-/// [`RESOLUTION_DEG`] over the block's time) and [`FEED_TOLERANCE`] of a
-/// limit pass.
+/// Values within what the rounding of the written text allows pass: each
+/// axis word one unit ([`RESOLUTION_MM`], [`RESOLUTION_DEG`]) off over the
+/// block's time, and the block's time off by
+/// [`Timeline::time_uncertainty`] (plus [`RELATIVE_TOLERANCE`]).
 pub fn check_timeline(tl: &Timeline, limits: &[AxisLimits]) -> Vec<Violation> {
     let w = limits.len().min(tl.axes().len());
     let mut pos: Vec<Tally> = (0..w)
@@ -266,9 +271,11 @@ pub fn check_timeline(tl: &Timeline, limits: &[AxisLimits]) -> Vec<Violation> {
     let mut acc: Vec<Tally> = (0..w)
         .map(|k| Tally::new(ViolationKind::Acceleration, k))
         .collect();
-    let tol = 1.0 + FEED_TOLERANCE;
-    // The previous feed block: (index, duration, velocities per axis).
-    let mut prev: Option<(usize, f64, Vec<f64>)> = None;
+    let tol = 1.0 + RELATIVE_TOLERANCE;
+    // The previous feed block: (index, duration, velocities per axis,
+    // their uncertainty).
+    let mut prev: Option<(usize, f64, Vec<f64>, Vec<f64>)> = None;
+    let mut dv = vec![0.0; w];
     let mut v = vec![0.0; w];
     for b in tl.blocks() {
         let i = b.index;
@@ -283,16 +290,18 @@ pub fn check_timeline(tl: &Timeline, limits: &[AxisLimits]) -> Vec<Violation> {
             }
         }
         if b.kind == Motion::Rapid {
-            if let Some((j, tj, vj)) = prev.take() {
-                to_rest(&mut jump, limits, j, b.start_s, tj, &vj);
+            if let Some((j, _, vj, uj)) = prev.take() {
+                to_rest(&mut jump, limits, j, b.start_s, &vj, &uj);
             }
             continue;
         }
         let t = b.duration_s;
+        let rel = tl.time_uncertainty(i);
         for (k, l) in limits.iter().enumerate().take(w) {
             let d = b.to[k] - b.from[k];
             v[k] = if d == 0.0 { 0.0 } else { d / t };
-            let slack = l.resolution() / t;
+            dv[k] = l.resolution() / t + v[k].abs() * rel;
+            let slack = dv[k];
             if v[k].abs() > l.v_max * tol + slack {
                 vel[k].hit((i, b.start_s, v[k].abs(), l.v_max), v[k].abs() / l.v_max);
             }
@@ -301,31 +310,31 @@ pub fn check_timeline(tl: &Timeline, limits: &[AxisLimits]) -> Vec<Violation> {
             None => {
                 // From rest.
                 for (k, l) in limits.iter().enumerate().take(w) {
-                    let slack = l.resolution() / t;
+                    let slack = dv[k];
                     if v[k].abs() > l.dv_max * tol + slack {
                         jump[k].hit((i, b.start_s, v[k].abs(), l.dv_max), v[k].abs() / l.dv_max);
                     }
                 }
             }
-            Some((_, tj, vj)) => {
+            Some((_, tj, vj, uj)) => {
                 for (k, l) in limits.iter().enumerate().take(w) {
-                    let dv = (v[k] - vj[k]).abs();
-                    let slack = l.resolution() / t + l.resolution() / tj;
-                    if dv > l.dv_max * tol + slack {
-                        jump[k].hit((i, b.start_s, dv, l.dv_max), dv / l.dv_max);
+                    let change = (v[k] - vj[k]).abs();
+                    let slack = dv[k] + uj[k];
+                    if change > l.dv_max * tol + slack {
+                        jump[k].hit((i, b.start_s, change, l.dv_max), change / l.dv_max);
                     }
                     let allowed = l.a_max * 0.5 * (t + tj);
-                    if l.a_max.is_finite() && dv > allowed * tol + slack {
-                        let a = dv / (0.5 * (t + tj));
+                    if l.a_max.is_finite() && change > allowed * tol + slack {
+                        let a = change / (0.5 * (t + tj));
                         acc[k].hit((i, b.start_s, a, l.a_max), a / l.a_max);
                     }
                 }
             }
         }
-        prev = Some((i, t, v.clone()));
+        prev = Some((i, t, v.clone(), dv.clone()));
     }
-    if let Some((j, tj, vj)) = prev {
-        to_rest(&mut jump, limits, j, tl.duration_s(), tj, &vj);
+    if let Some((j, _, vj, uj)) = prev {
+        to_rest(&mut jump, limits, j, tl.duration_s(), &vj, &uj);
     }
     let mut out: Vec<Violation> = Vec::new();
     for (tallies, unit_lin, unit_rot, scale) in [
@@ -352,11 +361,11 @@ pub fn check_timeline(tl: &Timeline, limits: &[AxisLimits]) -> Vec<Violation> {
     out
 }
 
-/// The jump from feed block `j` (duration `tj`, velocities `vj`) to rest at `time`.
-fn to_rest(jump: &mut [Tally], limits: &[AxisLimits], j: usize, time: f64, tj: f64, vj: &[f64]) {
-    for ((tally, l), v) in jump.iter_mut().zip(limits).zip(vj) {
-        let slack = l.resolution() / tj;
-        if v.abs() > l.dv_max * (1.0 + FEED_TOLERANCE) + slack {
+/// The jump from feed block `j` (velocities `vj`, their uncertainty `uj`)
+/// to rest at `time`.
+fn to_rest(jump: &mut [Tally], limits: &[AxisLimits], j: usize, time: f64, vj: &[f64], uj: &[f64]) {
+    for (((tally, l), v), slack) in jump.iter_mut().zip(limits).zip(vj).zip(uj) {
+        if v.abs() > l.dv_max * (1.0 + RELATIVE_TOLERANCE) + slack {
             tally.hit((j, time, v.abs(), l.dv_max), v.abs() / l.dv_max);
         }
     }

@@ -21,6 +21,8 @@ pub struct Timeline {
     starts: Vec<f64>,
     kinds: Vec<Motion>,
     lines: Vec<usize>,
+    /// Each block's relative time uncertainty from the written text.
+    rel_dt: Vec<f64>,
 }
 
 /// One block of a [`Timeline`].
@@ -102,6 +104,14 @@ impl Timeline {
         points.extend_from_slice(&start[..w.min(start.len())]);
         points.resize(w, 0.0);
         let mut starts = Vec::with_capacity(n + 1);
+        let mut rel_dt = Vec::with_capacity(n);
+        // How far a written length may be off: every axis word one unit.
+        let res_norm = program
+            .axes
+            .iter()
+            .map(|a| crate::limits::resolution(a.rotary).powi(2))
+            .sum::<f64>()
+            .sqrt();
         let mut t = 0.0;
         for (i, b) in program.blocks.iter().enumerate() {
             let fail = |what: String| SimError::Block {
@@ -113,16 +123,26 @@ impl Timeline {
                 return Err(fail(format!("needs {w} finite axis values")));
             }
             let from = &points[i * w..(i + 1) * w];
-            let d = match (b.kind, b.feed) {
-                (Motion::Rapid, _) => from
-                    .iter()
-                    .zip(&b.target)
-                    .zip(rapid_per_s)
-                    .map(|((p, q), v)| (q - p).abs() / v)
-                    .fold(0.0, f64::max),
-                (Motion::Linear, Feed::InverseTime(s)) => s,
+            let (d, rel) = match (b.kind, b.feed) {
+                (Motion::Rapid, _) => (
+                    from.iter()
+                        .zip(&b.target)
+                        .zip(rapid_per_s)
+                        .map(|((p, q), v)| (q - p).abs() / v)
+                        .fold(0.0, f64::max),
+                    0.0,
+                ),
+                // `F = 60 / t` written to 3 decimals.
+                (Motion::Linear, Feed::InverseTime(s)) => (s, 0.0005 * s / 60.0),
                 (Motion::Linear, Feed::PerMinute(f)) => {
-                    rule.length(&program.axes, from, &b.target) / f * 60.0
+                    let len = rule.length(&program.axes, from, &b.target);
+                    // The length from rounded words, `F` to 1 decimal.
+                    let rel = if len > 0.0 {
+                        res_norm / len + 0.05 / f
+                    } else {
+                        0.0
+                    };
+                    (len / f * 60.0, rel)
                 }
                 (Motion::Linear, Feed::None) => {
                     return Err(fail("a feed move without a feed".into()));
@@ -132,6 +152,7 @@ impl Timeline {
                 return Err(fail(format!("block time {d} s is not finite")));
             }
             starts.push(t);
+            rel_dt.push(rel);
             t += d;
             points.extend_from_slice(&b.target);
         }
@@ -142,7 +163,16 @@ impl Timeline {
             starts,
             kinds: program.blocks.iter().map(|b| b.kind).collect(),
             lines: lines.to_vec(),
+            rel_dt,
         })
+    }
+
+    /// How far block `i`'s duration may be off, relative, from the
+    /// rounding of the written text: `F` (`60 / t` to 3 decimals; a
+    /// per-minute feed to 1) and, for a per-minute block, its length from
+    /// axis words each up to one written unit off. 0 past the end.
+    pub fn time_uncertainty(&self, i: usize) -> f64 {
+        self.rel_dt.get(i).copied().unwrap_or(0.0)
     }
 
     /// The program's axes, in the order of every value.

@@ -139,7 +139,7 @@ fn every_program_the_demo_writes_keeps_its_machines_limits_but_acceleration() {
         };
         for program in std::fs::read_dir(&folder).unwrap() {
             let program = program.unwrap().path();
-            if !program.file_stem().is_some_and(|s| s == "program") {
+            if program.file_stem().is_none_or(|s| s != "program") {
                 continue;
             }
             let report = dir.join(format!("{name}.json"));

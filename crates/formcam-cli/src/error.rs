@@ -13,6 +13,9 @@ pub enum CliError {
     /// The run of a job failed.
     #[error(transparent)]
     Run(#[from] RunError),
+    /// `formcam check` could not read its program or machine.
+    #[error(transparent)]
+    Sim(#[from] formcam_sim::SimError),
     /// An input file (a correction job, scenario or report) could not be read.
     #[error("{}: cannot read: {source}", path.display())]
     Read {

@@ -1,6 +1,7 @@
 //! The `formcam` command line: reads job files, runs the processes of the
 //! library crates and writes their outputs atomically.
 
+mod check;
 mod correct;
 mod dress;
 mod error;
@@ -92,6 +93,19 @@ enum Command {
     Machine {
         #[command(subcommand)]
         what: MachineCommand,
+    },
+    /// Checks a written program on a machine: axis limits, velocity,
+    /// velocity jump and acceleration per block. Exit status 0 when clean,
+    /// 3 when a check fails, 2 when an input cannot be read.
+    Check {
+        /// The program (.mpf, .nc, .ngc, .gcode or .cls: the dialect by its extension).
+        program: PathBuf,
+        /// The machine file (TOML or URDF), or a shipped machine's name.
+        #[arg(long)]
+        machine: PathBuf,
+        /// Write the report (JSON: every violation) to this file.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
     },
     /// Runs every bundled example job and writes its outputs (the main job).
     Demo {
@@ -221,6 +235,15 @@ fn main() -> ExitCode {
         },
         Command::Dress { job, output } => dress::run(&job, &output).map(|s| println!("{s}")),
         Command::Demo { examples, output } => wind::run_demo(&examples, &output),
+        Command::Check {
+            program,
+            machine,
+            output,
+        } => match check::run(&program, &machine, output.as_deref()) {
+            Ok(true) => Ok(()),
+            Ok(false) => return ExitCode::from(3),
+            Err(e) => Err(e),
+        },
     };
     finish(result)
 }

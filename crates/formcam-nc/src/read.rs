@@ -74,6 +74,9 @@ struct Reader<'a> {
     /// The next block follows a re-zero.
     rezeroed: bool,
     pending: Option<String>,
+    /// The line being read (1-based) and the line of each block read.
+    line: usize,
+    lines: Vec<usize>,
 }
 
 impl<'a> Reader<'a> {
@@ -89,6 +92,8 @@ impl<'a> Reader<'a> {
             wrapped: false,
             rezeroed: false,
             pending: None,
+            line: 0,
+            lines: Vec::new(),
         })
     }
 
@@ -131,7 +136,7 @@ impl<'a> Reader<'a> {
 /// absolute angle (in the frame of the last `G92`); for LinuxCNC's wrapped
 /// rotary axes use [`read_gcode_in`].
 pub fn read_gcode(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
-    read_gcode_with(text, axes, false)
+    read_gcode_with(text, axes, false).map(|(p, _)| p)
 }
 
 /// Reads G-code as [`read_gcode`] does, as `dialect` means it: with
@@ -139,10 +144,24 @@ pub fn read_gcode(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
 /// position, `|v| < 360` and the sign the direction. `Dialect::Cldata` is
 /// not G-code: use [`read_cldata`].
 pub fn read_gcode_in(text: &str, axes: &[AxisSpec], dialect: Dialect) -> Result<Program, NcError> {
+    read_gcode_lines_in(text, axes, dialect).map(|(p, _)| p)
+}
+
+/// Reads G-code as [`read_gcode_in`] does, with the line (1-based) of each
+/// block: `lines[i]` is where `program.blocks[i]` stands in `text`.
+pub fn read_gcode_lines_in(
+    text: &str,
+    axes: &[AxisSpec],
+    dialect: Dialect,
+) -> Result<(Program, Vec<usize>), NcError> {
     read_gcode_with(text, axes, dialect == Dialect::LinuxCnc)
 }
 
-fn read_gcode_with(text: &str, axes: &[AxisSpec], wrapped: bool) -> Result<Program, NcError> {
+fn read_gcode_with(
+    text: &str,
+    axes: &[AxisSpec],
+    wrapped: bool,
+) -> Result<(Program, Vec<usize>), NcError> {
     let mut r = Reader::new(axes)?;
     r.wrapped = wrapped;
     // Every line lexed first, then interpreted in order.
@@ -154,10 +173,11 @@ fn read_gcode_with(text: &str, axes: &[AxisSpec], wrapped: bool) -> Result<Progr
         })
         .collect::<Result<Vec<_>, _>>()?;
     for (i, (line, lx)) in lines.iter().enumerate() {
+        r.line = i + 1;
         r.gcode_line(line, text, lx)
             .map_err(|what| line_error(i + 1, line, what))?;
     }
-    Ok(r.program)
+    Ok((r.program, r.lines))
 }
 
 /// Who the words of a line belong to, as they come.
@@ -348,6 +368,7 @@ impl Reader<'_> {
         };
         let comment = self.join_comment(inline);
         self.pos.clone_from(&target);
+        self.lines.push(self.line);
         self.program.blocks.push(Block {
             kind,
             target,
@@ -370,6 +391,12 @@ fn number(text: &str, lineno: usize, what: &str) -> Result<f64, NcError> {
 /// Reads APT CLDATA as formcam's CLDATA writer writes it (machine-axis
 /// `GOTO` records) on `axes` (see the module documentation).
 pub fn read_cldata(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
+    read_cldata_lines(text, axes).map(|(p, _)| p)
+}
+
+/// Reads CLDATA as [`read_cldata`] does, with the line (1-based) of each
+/// block's `GOTO` (its first line when continued).
+pub fn read_cldata_lines(text: &str, axes: &[AxisSpec]) -> Result<(Program, Vec<usize>), NcError> {
     let mut r = Reader::new(axes)?;
     let mut rapid = false;
     // (value, inverse)
@@ -493,6 +520,7 @@ pub fn read_cldata(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
                 };
                 rapid = false;
                 let comment = r.join_comment(None);
+                r.lines.push(lineno);
                 r.program.blocks.push(Block {
                     kind,
                     target: values,
@@ -505,7 +533,7 @@ pub fn read_cldata(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
             _ => {}
         }
     }
-    Ok(r.program)
+    Ok((r.program, r.lines))
 }
 
 #[cfg(test)]
@@ -533,6 +561,11 @@ mod tests {
             ]
         );
         assert_eq!(p.blocks[1].comment.as_deref(), Some("c"));
+        let (_, lines) = read_gcode_lines_in(text, &x_a(), Dialect::Iso).unwrap();
+        assert_eq!(lines, [2, 3, 4, 5]);
+        let cls = "PARTNO/P\nFEDRAT/100\nGOTO/1,$\n2\n$$ c\nRAPID\nGOTO/3,4\nFINI\n";
+        let (p, lines) = read_cldata_lines(cls, &x_a()).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!((p.blocks.len(), lines), (2, vec![3, 7]));
     }
 
     #[test]

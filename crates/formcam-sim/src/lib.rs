@@ -1,0 +1,35 @@
+//! The virtual machine of formcam: any program formcam writes, read back as
+//! text and played on a machine model.
+//!
+//! * [`FeedRule`] — how each controller turns a per-minute `F` into a block
+//!   time when linear and rotary axes move together (LinuxCNC, Sinumerik
+//!   840D, ISO, Marlin, CLDATA).
+//! * [`Timeline`] — per block its program line, start time, duration and
+//!   axis values at both ends, from the program's own feeds (inverse time
+//!   `60 / F`, per minute by the dialect's rule, rapids at the machine's
+//!   velocity limits); [`Timeline::sample`], [`Timeline::block_at`] and
+//!   [`Timeline::poses_at`] (every link and key point by forward kinematics)
+//!   at any time. Later checks (collisions, the free band) and the viewer
+//!   sample the same timeline.
+//! * [`check_timeline`] — the axis checks: position limits, velocity,
+//!   velocity jump and acceleration per axis, each a [`Violation`] with the
+//!   block, line and time where it first happens and where it is worst.
+//! * [`check_files`] — the whole pipeline of `formcam check`: a program file
+//!   and a machine (file or shipped name) to a [`Report`] and its one line.
+
+mod error;
+mod feed;
+mod limits;
+mod pipeline;
+mod report;
+mod timeline;
+
+pub use error::SimError;
+pub use feed::FeedRule;
+pub use limits::{
+    AxisLimits, RELATIVE_TOLERANCE, RESOLUTION_DEG, RESOLUTION_MM, Violation, ViolationKind,
+    check_timeline,
+};
+pub use pipeline::{CheckRun, check_files, check_text, program_axes, read_program};
+pub use report::Report;
+pub use timeline::{BlockSpan, Poses, Timeline};

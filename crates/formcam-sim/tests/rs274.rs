@@ -1,0 +1,226 @@
+//! The LinuxCNC timeline against LinuxCNC's own interpreter: `rs274 -g`
+//! (Debian's `linuxcnc-uspace`) reads a program formcam's LinuxCNC writer
+//! wrote (inverse-time and per-minute blocks, rotary and linear axes
+//! together, the spindle a wrapped rotary axis); its canonical traverse and
+//! feed calls end where our blocks end, and the time of each is our block's
+//! duration. The interpreter hands inverse-time blocks to the canonical
+//! machine as a per-minute rate over the length of its own rule (the
+//! length over the block time), so the time of every feed call, its length
+//! by LinuxCNC's documented rule over the rate printed, checks our rule and
+//! our reading of `G93` both.
+//!
+//! Without `rs274` on the PATH the test says it was skipped, unless
+//! `FORMCAM_REQUIRE_RS274=1` (set by `.ci/run`), when it fails.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::path::Path;
+use std::process::{Command, Stdio};
+
+use formcam_machine::shipped::shipped;
+use formcam_nc::{Block, Dialect, Feed, Motion, Program, write};
+use formcam_sim::{FeedRule, Timeline, program_axes, read_program};
+
+fn rs274_present() -> bool {
+    let found = Command::new("rs274")
+        .arg("-h")
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .is_ok();
+    if !found {
+        assert!(
+            std::env::var("FORMCAM_REQUIRE_RS274").as_deref() != Ok("1"),
+            "rs274 (Debian package linuxcnc-uspace) is not on the PATH and \
+             FORMCAM_REQUIRE_RS274=1"
+        );
+        eprintln!("skipped: rs274 (linuxcnc-uspace) is not installed");
+    }
+    found
+}
+
+/// A canonical move: traverse or feed, its end (x y z a b c u v w), the
+/// feed mode (inverse time) and rate in force.
+#[derive(Debug)]
+struct Move {
+    feed: bool,
+    end: Vec<f64>,
+    inverse: bool,
+    rate: f64,
+}
+
+fn numbers(args: &str) -> Vec<f64> {
+    args.split(',')
+        .filter_map(|a| a.trim().parse::<f64>().ok())
+        .collect()
+}
+
+/// The moves of `rs274 -g`'s output.
+fn moves(text: &str) -> Vec<Move> {
+    let (mut inverse, mut rate) = (false, 0.0);
+    let mut out = Vec::new();
+    for line in text.lines() {
+        let Some(call) = line.split("N..... ").nth(1) else {
+            continue;
+        };
+        let (name, rest) = call.split_once('(').unwrap_or((call, ""));
+        let args = rest.rsplit_once(')').map_or(rest, |(a, _)| a);
+        match name {
+            // SET_FEED_MODE(spindle, mode) or SET_FEED_MODE(mode): 1 inverse time.
+            "SET_FEED_MODE" => inverse = numbers(args).last() == Some(&1.0),
+            "SET_FEED_RATE" => rate = numbers(args)[0],
+            "STRAIGHT_TRAVERSE" | "STRAIGHT_FEED" => out.push(Move {
+                feed: name == "STRAIGHT_FEED",
+                // u, v, w only where the machine has them.
+                end: {
+                    let mut v = numbers(args);
+                    v.resize(9, 0.0);
+                    v
+                },
+                inverse,
+                rate,
+            }),
+            _ => {}
+        }
+    }
+    out
+}
+
+/// LinuxCNC's time of a feed move (its manual, "Feed Rate"): inverse time
+/// `60 / F`; per minute along X, Y, Z, else U, V, W, else A, B, C.
+fn feed_time(from: &[f64], m: &Move) -> f64 {
+    if m.inverse {
+        return 60.0 / m.rate;
+    }
+    let norm =
+        |r: std::ops::Range<usize>| r.map(|i| (m.end[i] - from[i]).powi(2)).sum::<f64>().sqrt();
+    let len = [norm(0..3), norm(6..9), norm(3..6)]
+        .into_iter()
+        .find(|l| *l > 0.0)
+        .unwrap_or(0.0);
+    len / m.rate * 60.0
+}
+
+#[test]
+fn linuxcnc_times_our_linuxcnc_program_as_we_do() {
+    if !rs274_present() {
+        return;
+    }
+    let m = shipped("winder-4axis").unwrap().machine().unwrap();
+    // A (modulo), X, Y, B.
+    let mut p = Program::new("RS274", program_axes(&m));
+    p.blocks.push(Block::rapid(vec![0.0, 100.0, 250.0, 0.0]));
+    let mut a = 0.0;
+    for i in 0..60 {
+        let s = f64::from(i);
+        a += 37.0 + 5.0 * (0.3 * s).sin();
+        let target = vec![
+            a,
+            100.0 + 200.0 * (0.1 * s).sin(),
+            250.0 + 40.0 * (0.2 * s).cos(),
+            if i % 7 == 3 {
+                0.0
+            } else {
+                20.0 * (0.15 * s).sin()
+            },
+        ];
+        let feed = match i % 4 {
+            0 | 1 => Feed::InverseTime(0.05 + 0.01 * f64::from(i % 5)),
+            2 => Feed::PerMinute(3000.0 + 100.0 * s),
+            _ => Feed::PerMinute(1500.0),
+        };
+        p.blocks.push(Block::linear(target, feed));
+        if i == 20 {
+            // A block of rotary axes alone, per minute (degrees per minute).
+            let mut t = p.blocks.last().unwrap().target.clone();
+            t[0] += 90.0;
+            t[3] += 5.0;
+            a = t[0];
+            p.blocks.push(Block::linear(t, Feed::PerMinute(2400.0)));
+        }
+    }
+    let mut text = String::new();
+    write(&p, Dialect::LinuxCnc, &mut text).unwrap();
+
+    let dir = std::env::temp_dir().join(format!("formcam-sim-rs274-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("winder.ini"),
+        "[RS274NGC]\nPARAMETER_FILE = winder.var\n\n[TRAJ]\nCOORDINATES = XYZAB\n\
+         LINEAR_UNITS = mm\nANGULAR_UNITS = degree\n\n[AXIS_A]\nWRAPPED_ROTARY = 1\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("winder.var"), "").unwrap();
+    std::fs::write(dir.join("winder.tbl"), "T1 P1 D0 Z0 ;\n").unwrap();
+    std::fs::write(dir.join("program.ngc"), &text).unwrap();
+    let run = Command::new("rs274")
+        .current_dir(&dir)
+        .args([
+            "-i",
+            "winder.ini",
+            "-t",
+            "winder.tbl",
+            "-v",
+            "winder.var",
+            "-g",
+        ])
+        .args(["program.ngc", "canon.txt"])
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    let printed = std::fs::read_to_string(dir.join("canon.txt")).unwrap_or_default();
+    assert!(
+        run.status.success(),
+        "rs274 failed: {}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let calls = moves(&printed);
+
+    let (read, lines, d) = read_program(Path::new("program.ngc"), &text, &m).unwrap();
+    let tl = Timeline::new(&read, &lines, FeedRule::of(d), &m).unwrap();
+    assert_eq!(calls.len(), tl.len(), "moves:\n{printed}");
+    // rs274 starts at 0 on every axis; our timeline at the machine's home,
+    // which only the first block (a rapid) sees.
+    let mut here = vec![0.0; 9];
+    let mut feeds = 0;
+    for (c, b) in calls.iter().zip(tl.blocks()) {
+        assert_eq!(c.feed, b.kind == Motion::Linear, "block {}", b.index);
+        // Ours A, X, Y, B; theirs x y z a b c u v w (A unwound by the
+        // wrapped rotary axis, as our reader unwinds it).
+        let theirs = [c.end[3], c.end[0], c.end[1], c.end[4]];
+        for (k, (t, o)) in theirs.iter().zip(b.to).enumerate() {
+            let wrapped = if k == 0 {
+                (t - o).rem_euclid(360.0)
+            } else {
+                t - o
+            };
+            let off = wrapped.min(360.0 - wrapped.abs()).abs();
+            assert!(
+                if k == 0 {
+                    off < 1e-6
+                } else {
+                    (t - o).abs() < 1e-6
+                },
+                "block {} axis {k}: rs274 {t}, ours {o}",
+                b.index
+            );
+        }
+        if c.feed {
+            let t = feed_time(&here, c);
+            // rs274 prints the rate with 4 decimals.
+            let printed = t * 0.5e-4 / c.rate;
+            assert!(
+                (t - b.duration_s).abs() <= printed + 1e-12,
+                "block {} (line {}): rs274 {t} s, ours {} s",
+                b.index,
+                b.line,
+                b.duration_s
+            );
+            feeds += 1;
+        }
+        here.clone_from(&c.end);
+    }
+    assert!(feeds > 60);
+    std::fs::remove_dir_all(&dir).ok();
+}

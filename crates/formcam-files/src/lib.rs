@@ -8,7 +8,7 @@ mod quote;
 mod read;
 mod write;
 
-pub use quote::{QUOTE_MAX_CHARS, Quote, excerpt, quote, syntax_message};
+pub use quote::{QUOTE_MAX_CHARS, Quote, excerpt, nearest, quote, syntax_message};
 pub use read::{
     DEFAULT_MAX_INPUT_BYTES, FileKind, ReadError, max_input_bytes, read_bytes, read_bytes_capped,
     read_text, read_text_capped, set_max_input_bytes,

@@ -142,7 +142,10 @@ fn write_char(f: &mut fmt::Formatter<'_>, c: char) -> fmt::Result {
 /// there: `NUL characters are not allowed` (or
 /// another control character), `expected a value after `=`` when the line
 /// stops after `key =`, `unexpected end of the text`, `unexpected `c``.
-/// Newlines in the message become spaces (a message is one line).
+/// Newlines in the message become spaces (a message is one line). An
+/// unknown field names the nearest field instead of the list of all
+/// (`unknown field `vmax_deg_min`; did you mean `v_max_deg_min`?`), or lists
+/// them without backticks when none is near.
 pub fn syntax_message(message: &str, text: &str, at: usize) -> String {
     let at = floor_char_boundary(text, at);
     let stray = |c: char| c.is_control() && !matches!(c, '\t' | '\n' | '\r');
@@ -151,7 +154,8 @@ pub fn syntax_message(message: &str, text: &str, at: usize) -> String {
     // read, whatever it says it expected (the user cannot see it).
     let here = text[at..].chars().next().filter(|&c| stray(c));
     if !message.is_empty() && here.is_none() {
-        return message.replace('\n', " ");
+        let message = message.replace('\n', " ");
+        return unknown_field(&message).unwrap_or(message);
     }
     if let Some(c) = here.or_else(|| text.chars().find(|&c| stray(c))) {
         return if c == '\0' {
@@ -173,6 +177,62 @@ pub fn syntax_message(message: &str, text: &str, at: usize) -> String {
     }
 }
 
+/// serde's `unknown field `x`, expected one of `a`, `b`, ...` made short:
+/// the nearest field when one is near, else the fields without backticks.
+fn unknown_field(message: &str) -> Option<String> {
+    let (name, rest) = message.strip_prefix("unknown field `")?.split_once('`')?;
+    let list = rest.strip_prefix(", expected one of ")?;
+    let fields: Vec<&str> = list.split(", ").map(|f| f.trim_matches('`')).collect();
+    Some(match nearest(name, &fields) {
+        Some(field) => format!("unknown field `{}`; did you mean `{field}`?", quote(name)),
+        None => format!(
+            "unknown field `{}`; allowed: {}",
+            quote(name),
+            fields.join(", ")
+        ),
+    })
+}
+
+/// The field a mistyped `name` most likely meant, if one is near: the
+/// field that is `name` with a unit suffix (`margin` for `margin_mm`), else
+/// the closest within a quarter of its letters' edits (`band_widht` for
+/// `band_width`). Words under four letters are matched by suffix only.
+pub fn nearest<'a>(name: &str, fields: &[&'a str]) -> Option<&'a str> {
+    let suffixed = fields.iter().copied().find(|f| {
+        !name.is_empty()
+            && f.strip_prefix(name)
+                .is_some_and(|rest| rest.starts_with('_'))
+    });
+    if suffixed.is_some() {
+        return suffixed;
+    }
+    let most = name.chars().count() / 4;
+    fields
+        .iter()
+        .map(|f| (edit_distance(name, f), *f))
+        .filter(|&(d, _)| d > 0 && d <= most)
+        .min()
+        .map(|(_, f)| f)
+}
+
+/// The Levenshtein distance of two words, in characters.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let above = row[j + 1];
+            row[j + 1] = (above + 1)
+                .min(row[j] + 1)
+                .min(diagonal + usize::from(ca != cb));
+            diagonal = above;
+        }
+    }
+    row[b.len()]
+}
+
 /// The largest char boundary of `text` at or before `at`.
 fn floor_char_boundary(text: &str, at: usize) -> usize {
     let mut at = at.min(text.len());
@@ -188,6 +248,42 @@ mod tests {
 
     use super::*;
     use proptest::prelude::*;
+
+    #[test]
+    fn an_unknown_field_names_the_nearest_or_lists_the_fields() {
+        let serde =
+            "unknown field `vmax_deg_min`, expected one of `name`, `v_max_deg_min`, `min_deg`";
+        assert_eq!(
+            syntax_message(serde, "", 0),
+            "unknown field `vmax_deg_min`; did you mean `v_max_deg_min`?"
+        );
+        let serde = "unknown field `linear`, expected one of `block`, `rapid`, `footer`";
+        assert_eq!(
+            syntax_message(serde, "", 0),
+            "unknown field `linear`; allowed: block, rapid, footer"
+        );
+        let serde = "unknown field `x`, expected `a` or `b`";
+        assert_eq!(syntax_message(serde, "", 0), serde);
+    }
+
+    #[test]
+    fn the_nearest_field_is_the_suffixed_or_the_closest() {
+        let fields = ["band_width", "winding_angle_deg", "margin_mm", "on", "mu"];
+        assert_eq!(nearest("band_widht", &fields), Some("band_width"));
+        assert_eq!(nearest("winding_angle", &fields), Some("winding_angle_deg"));
+        assert_eq!(nearest("margin", &fields), Some("margin_mm"));
+        assert_eq!(nearest("of", &fields), None);
+        assert_eq!(nearest("thickness", &fields), None);
+        assert_eq!(nearest("", &fields), None);
+    }
+
+    #[test]
+    fn edit_distances() {
+        assert_eq!(edit_distance("", "abc"), 3);
+        assert_eq!(edit_distance("band_widht", "band_width"), 2);
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("same", "same"), 0);
+    }
 
     /// Rust's own escape of a character, as the quote writes it (controls
     /// and invisible characters; printable text unescaped).

@@ -30,7 +30,7 @@ pub enum GeomError {
         allowed: String,
     },
     /// A table of meridian points is unusable.
-    #[error("meridian table row {row}: {reason}")]
+    #[error("point {row}: {reason}")]
     Table {
         /// 1-based row number in the table (data rows, header not counted).
         row: usize,
@@ -38,7 +38,7 @@ pub enum GeomError {
         reason: String,
     },
     /// A table has too few points for a spline.
-    #[error("meridian table has {count} points, at least 4 are needed")]
+    #[error("{count} points, at least 4 are needed")]
     TooFewPoints {
         /// Number of points found.
         count: usize,

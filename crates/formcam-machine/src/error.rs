@@ -86,8 +86,18 @@ impl PartialEq for UrdfFault {
 }
 
 impl fmt::Display for UrdfFault {
+    /// urdf-rs's reason on one line; an empty or non-XML document says what
+    /// a URDF document is, and serde's `custom: ` prefix is dropped.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let text = self.0.to_string();
+        if text.trim() == "No elements found" {
+            return write!(
+                f,
+                "no XML element found: a URDF document is XML, a <robot> element holding \
+                 <link> and <joint> elements"
+            );
+        }
+        let text = text.trim_start().strip_prefix("custom: ").unwrap_or(&text);
         let mut words = text.split_whitespace();
         if let Some(first) = words.next() {
             write!(f, "{first}")?;

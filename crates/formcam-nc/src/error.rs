@@ -234,4 +234,15 @@ pub enum TemplateProblem {
         /// The template field.
         field: &'static str,
     },
+    /// An extension that is no plain file extension (a dot, a slash, empty).
+    #[error(
+        "extension = \"{extension}\": letters, digits, `_` and `-` only, without the dot (`h`, `nc`)"
+    )]
+    Extension {
+        /// The extension given (quoted).
+        extension: String,
+    },
+    /// Line numbers that do not advance.
+    #[error("line_numbers.step = 0: allowed >= 1")]
+    LineStep,
 }

@@ -197,6 +197,15 @@ impl Template {
                 }));
             }
         }
+        let plain = |c: char| c.is_ascii_alphanumeric() || c == '_' || c == '-';
+        if f.extension.is_empty() || !f.extension.chars().all(plain) {
+            return Err(NcError::template(TemplateProblem::Extension {
+                extension: formcam_files::quote(&f.extension).to_string(),
+            }));
+        }
+        if f.line_numbers.as_ref().is_some_and(|l| l.step == 0) {
+            return Err(NcError::template(TemplateProblem::LineStep));
+        }
         let letters = f.axis_letters.as_ref();
         let parse = |name, text: &str, scope| parse_field(name, text, scope, letters);
         Ok(Self {

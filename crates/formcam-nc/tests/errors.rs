@@ -193,3 +193,28 @@ fn a_template_cut_after_its_equals_sign_says_a_value_is_expected() {
     assert!(!e.to_string().ends_with(": "), "{e}");
     assert!(!e.to_string().contains('\0'), "{e}");
 }
+
+#[test]
+fn a_template_extension_is_a_plain_word_and_its_line_numbers_advance() {
+    for ext in [".h", "", "h/../x", "n c"] {
+        let text = format!("extension = \"{ext}\"\nblock = \"{{axes}}\"");
+        let e = Template::from_toml(&text).unwrap_err();
+        let m = e.to_string();
+        assert!(
+            m.contains("extension = ") && m.contains("without the dot"),
+            "{m}"
+        );
+    }
+    for ext in ["h", "nc", "mpf", "p_1-b"] {
+        let text = format!("extension = \"{ext}\"\nblock = \"{{axes}}\"");
+        assert_eq!(Template::from_toml(&text).unwrap().extension(), ext);
+    }
+    let steps = "extension = \"h\"\nblock = \"{axes}\"\nline_numbers = { start = 0, step = 0 }";
+    let e = Template::from_toml(steps).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("line_numbers.step = 0: allowed >= 1"),
+        "{e}"
+    );
+    assert!(Template::from_toml(&steps.replace("step = 0", "step = 1")).is_ok());
+}

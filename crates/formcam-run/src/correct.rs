@@ -224,8 +224,9 @@ fn correct_to(
 ) -> Result<(RunOutput, Vec<u8>), RunError> {
     let fail = |e: CorrectError| failure(e, job, form);
     job.settings.check().map_err(fail)?;
-    let measurements = read_measurements(&job.measurements)?;
-    let text = read(&job.program)?;
+    let measurements =
+        read_measurements(&job.measurements).map_err(|e| named(e, form, "correct.measurements"))?;
+    let text = read(&job.program).map_err(|e| named(e, form, "correct.program"))?;
     let ext = job
         .program
         .extension()
@@ -579,6 +580,20 @@ pub fn read_measurements(path: &Path) -> Result<Measurements, RunError> {
         path: path.to_path_buf(),
         source,
     })?)
+}
+
+/// A file a job names that cannot be read, naming the job and its `field`;
+/// on the command line the file alone.
+fn named(e: RunError, form: Form<'_>, field: &'static str) -> RunError {
+    match (e, form) {
+        (RunError::Read { path, source }, Form::Job(job)) => RunError::ReadNamed {
+            job: job.to_path_buf(),
+            field,
+            path,
+            source,
+        },
+        (e, _) => e,
+    }
 }
 
 /// The file name of `path`.

@@ -50,17 +50,27 @@ pub fn dress_text_with(
     let parsed = DressJob::from_toml(text).map_err(|e| job_error(job, e))?;
     let warnings = parsed.warnings();
     let mut inputs = vec![job.to_path_buf()];
-    let initial = match &parsed.process.initial_contour {
-        Some(file) => {
-            let path = resolve(job, file);
-            let contour = read_initial(&path)?;
-            inputs.push(path);
+    let contour_file = parsed
+        .process
+        .initial_contour
+        .as_ref()
+        .map(|file| resolve(job, file));
+    let initial = match &contour_file {
+        Some(path) => {
+            let contour = read_initial(path)?;
+            inputs.push(path.clone());
             Some(contour)
         }
         None => None,
     };
-    let spec = parsed.spec(initial).map_err(|e| job_error(job, e))?;
-    let d = run_dressing(&spec, progress).map_err(|e| job_error(job, e))?;
+    // A contour that cannot be dressed (below the profile, narrower than
+    // the wheel) is named by its own file.
+    let blame = |e: DressError| match (&e, &contour_file) {
+        (DressError::Contour(_), Some(path)) => job_error(path, e),
+        _ => job_error(job, e),
+    };
+    let spec = parsed.spec(initial).map_err(blame)?;
+    let d = run_dressing(&spec, progress).map_err(blame)?;
     progress.checkpoint(Step::new(Phase::Files, 0, 1))?;
     let cls = d.nc(Dialect::Cldata).map_err(|e| job_error(job, e))?;
     let mpf = d

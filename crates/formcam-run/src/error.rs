@@ -17,6 +17,18 @@ pub enum RunError {
         /// The reason.
         source: std::io::Error,
     },
+    /// A file a job names (by `field`) could not be read.
+    #[error("{}: {field}: cannot read {}: {source}", job.display(), path.display())]
+    ReadNamed {
+        /// The job file.
+        job: PathBuf,
+        /// The job's field naming the file (`correct.measurements`).
+        field: &'static str,
+        /// The file.
+        path: PathBuf,
+        /// The reason.
+        source: std::io::Error,
+    },
     /// A job file could not be read.
     #[error("{}: cannot read the job file: {source}", path.display())]
     ReadJob {

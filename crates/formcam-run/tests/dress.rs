@@ -180,11 +180,11 @@ fn an_initial_contour_reads_with_the_new_and_the_old_header() {
         ),
         "{e}"
     );
-    // A contour below the profile.
+    // A contour below the profile: named by its own file.
     std::fs::write(dir.join("worn.csv"), "z,x\n-3,0\n3,0\n").unwrap();
     let e = dress(&job).unwrap_err().to_string();
     assert!(
-        e.contains("job.toml: process.initial_contour: it lies") && e.contains("at z = "),
+        e.contains("worn.csv: process.initial_contour: it lies") && e.contains("at z = "),
         "{e}"
     );
 }

@@ -133,7 +133,7 @@ fn bad_profiles_and_concave_meridians_fail_cleanly() {
         &[("m.csv", "z,r\n0,10\n1,20\n3,25\n2,24\n4,10\n")],
     );
     assert!(
-        err.contains("mandrel.file") && err.contains("row 4"),
+        err.contains("mandrel.file") && err.contains("point 4"),
         "{err}"
     );
     let err = fails("too-few", prof, &[("m.csv", "z,r\n0,10\n1,20\n2,10\n")]);

@@ -37,7 +37,7 @@ pub enum SchemaError {
         allowed: String,
     },
     /// A key its table does not have.
-    #[error("{field} at {line}:{column}: unknown field `{key}`; allowed: {allowed}")]
+    #[error("{field} at {line}:{column}: unknown field `{key}`; {allowed}")]
     UnknownKey {
         /// The dotted field.
         field: String,
@@ -47,7 +47,8 @@ pub enum SchemaError {
         line: usize,
         /// Column (1-based).
         column: usize,
-        /// The keys allowed.
+        /// The nearest key (`did you mean `band_width`?`), or the keys
+        /// allowed (`allowed: mu, band_width`).
         allowed: String,
     },
     /// A value of the wrong type.
@@ -313,7 +314,11 @@ impl Checker<'_> {
             let dotted = format!("{path}.{}", key.get());
             match fields.iter().find(|f| f.name == key.get()) {
                 None => {
-                    let allowed = fields.iter().map(|f| f.name).collect::<Vec<_>>().join(", ");
+                    let names: Vec<&str> = fields.iter().map(|f| f.name).collect();
+                    let allowed = match formcam_files::nearest(key.get(), &names) {
+                        Some(near) => format!("did you mean `{near}`?"),
+                        None => format!("allowed: {}", names.join(", ")),
+                    };
                     let key = key.get().to_string();
                     self.push(key_at, |line, column| SchemaError::UnknownKey {
                         field: dotted,
@@ -510,8 +515,8 @@ fn allowed_numbers(f: &Field) -> String {
 /// cone`.
 fn expected(f: &Field) -> String {
     match f.kind {
-        Kind::Number | Kind::Integer => format!("{} {}", an(f.kind), allowed_numbers(f)),
-        Kind::NumberOrWord(_) => format!("a number {}", allowed_numbers(f)),
+        Kind::Number | Kind::Integer => expected_number(an(f.kind), f),
+        Kind::NumberOrWord(_) => expected_number("a number", f),
         Kind::Word(words) => format!("one of {}", quoted(words)),
         Kind::Name(words) => format!("one of {} (any case)", quoted(words)),
         Kind::Words(words) => format!("a list of words from {}", quoted(words)),
@@ -520,6 +525,16 @@ fn expected(f: &Field) -> String {
         Kind::Text => "text".into(),
         Kind::File => "a file name (text)".into(),
         Kind::Tables(_) => format!("a {}", f.kind.describe()),
+    }
+}
+
+/// `a number > 0 mm`; without a range `a finite number deg`, `an integer`.
+fn expected_number(noun: &str, f: &Field) -> String {
+    let allowed = allowed_numbers(f);
+    match f.range {
+        Some(_) => format!("{noun} {allowed}"),
+        None if noun == "a number" => allowed,
+        None => allowed.replacen("a finite number", noun, 1),
     }
 }
 

@@ -767,8 +767,12 @@ impl EyeJob {
             }
             (_, Some(file)) => {
                 let text = read(file).map_err(|e| WindingError::field("eye.curve", e))?;
-                formcam_geom::read_pairs(&text, ("Z", "R"))
-                    .map_err(|e| WindingError::field("eye.curve", format!("{file}: {e}")))?
+                let points = formcam_geom::read_pairs(&text, ("Z", "R"))
+                    .map_err(|e| WindingError::field("eye.curve", format!("{file}: {e}")))?;
+                if let Some(fault) = crate::eye::curve_fault(&points) {
+                    return Err(WindingError::field("eye.curve", format!("{file}: {fault}")));
+                }
+                points
             }
             (_, None) => Vec::new(),
         };

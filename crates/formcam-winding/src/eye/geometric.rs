@@ -7,35 +7,32 @@ use super::envelope::{FirstExit, Profile};
 use super::spec::{EyeMode, EyeSpec};
 use crate::WindingError;
 
-/// The user curve as a profile (fine resampling of the polyline).
-pub(super) fn curve_profile(curve: &[(f64, f64)]) -> Result<Profile, WindingError> {
+/// What is wrong with a user curve's points (at least two, `Z` increasing,
+/// finite, `R > 0`), if anything, counting the points from 1.
+pub(crate) fn curve_fault(curve: &[(f64, f64)]) -> Option<String> {
     if curve.len() < 2 {
-        return Err(WindingError::field(
-            "eye.curve",
-            "needs at least 2 points (columns Z,R)",
-        ));
+        return Some("needs at least 2 points (columns Z,R)".into());
     }
     for (i, w) in curve.windows(2).enumerate() {
         if w[1].0.is_nan() || w[1].0 <= w[0].0 {
-            return Err(WindingError::field(
-                "eye.curve",
-                format!(
-                    "row {}: Z must increase (got {} after {})",
-                    i + 2,
-                    w[1].0,
-                    w[0].0
-                ),
+            return Some(format!(
+                "point {}: Z must increase (got {} after {})",
+                i + 2,
+                w[1].0,
+                w[0].0
             ));
         }
     }
-    if curve
+    curve
         .iter()
-        .any(|p| !p.0.is_finite() || !p.1.is_finite() || p.1 <= 0.0)
-    {
-        return Err(WindingError::field(
-            "eye.curve",
-            "every point needs finite Z and R > 0",
-        ));
+        .position(|p| !p.0.is_finite() || !p.1.is_finite() || p.1 <= 0.0)
+        .map(|i| format!("point {}: Z and R must be finite, R > 0 mm", i + 1))
+}
+
+/// The user curve as a profile (fine resampling of the polyline).
+pub(super) fn curve_profile(curve: &[(f64, f64)]) -> Result<Profile, WindingError> {
+    if let Some(fault) = curve_fault(curve) {
+        return Err(WindingError::field("eye.curve", fault));
     }
     let (z0, z1) = (curve[0].0, curve[curve.len() - 1].0);
     let cells = 8192usize;

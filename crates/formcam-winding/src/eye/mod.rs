@@ -37,5 +37,6 @@ mod trajectory;
 
 pub use band::{axis_parallel_length, eye_at};
 pub use checks::{Constraint, PullStats, Violation};
+pub(crate) use geometric::curve_fault;
 pub use spec::{EyeMode, EyeSpec};
 pub use trajectory::{Comparison, EyePoint, EyeTrajectory, eye_trajectory};

@@ -362,7 +362,7 @@ fn last_word(code: &str) -> Option<Truncation> {
     if k == 0 {
         return None;
     }
-    let back = |keep: fn(&u8) -> bool| b[..k].iter().rev().take_while(|c| keep(*c)).count();
+    let back = |keep: fn(&u8) -> bool| b[..k].iter().rev().take_while(|c| keep(c)).count();
     // A name followed by `=` needs its value, a parameter `#` its number,
     // a one-letter address its number; a keyword ending the line (`M30`
     // has its digits, `STOPRE` is a word) is whole.

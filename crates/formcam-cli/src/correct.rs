@@ -6,11 +6,11 @@
 use std::path::{Path, PathBuf};
 
 use formcam_correct::{
-    CorrectionJob, DEFAULT_ARC_TOLERANCE_MM, DEFAULT_MAX_DEVIATION_MM, Interpolation, Options,
-    Settings, Tool,
+    CorrectionJob, DEFAULT_ARC_TOLERANCE_MM, DEFAULT_MAX_DEVIATION_MM, Given, Interpolation,
+    MILLING_DIALECTS, Options, Rule, Settings, Tool,
 };
 use formcam_nc::Dialect;
-use formcam_run::{History, RunOutput};
+use formcam_run::{CorrectRunError, History, RunError, RunOutput};
 
 use crate::CliError;
 use crate::output::{write_files, write_run};
@@ -63,8 +63,8 @@ pub struct CorrectArgs {
     /// correction can bend them (default: moves are kept whole).
     #[arg(long)]
     pub max_segment: Option<f64>,
-    /// The program's syntax: iso, sinumerik-840d, linuxcnc (default: from
-    /// the extension).
+    /// The program's syntax: iso (fanuc), sinumerik-840d (sinumerik, 840d),
+    /// linuxcnc, marlin-xab (default: from the extension).
     #[arg(long)]
     pub dialect: Option<String>,
     /// Resample every section to this many points (default: as measured when
@@ -111,7 +111,7 @@ fn run_args(a: &CorrectArgs) -> Result<String, CliError> {
     let out_path = need(&a.output, "-o corrected.nc")?;
     guard_outputs(&meas_path, &prog_path, &out_path, a.report.as_deref())?;
     let dialect = match &a.dialect {
-        Some(d) => Some(Dialect::from_name(d).map_err(CliError::Dialect)?),
+        Some(d) => Some(milling_dialect(d)?),
         None => None,
     };
     let job = CorrectionJob {
@@ -165,6 +165,25 @@ fn run_args(a: &CorrectArgs) -> Result<String, CliError> {
     files.extend(main.iter().map(|f| (out_path.clone(), f.bytes.as_slice())));
     write_files(&files, &done.run.inputs)?;
     Ok(done.run.line)
+}
+
+/// The dialect `--dialect name` names, refused in the words of the job
+/// file's `dialect` field (`--dialect "foo": allowed iso, fanuc, ...`).
+fn milling_dialect(name: &str) -> Result<Dialect, CliError> {
+    let listed = MILLING_DIALECTS
+        .iter()
+        .any(|m| m.eq_ignore_ascii_case(name));
+    match Dialect::from_name(name) {
+        Ok(d) if listed => Ok(d),
+        _ => Err(RunError::from(CorrectRunError::Flag {
+            flag: "dialect",
+            value: Given::Word(formcam_files::quote(name).to_string()),
+            rule: Rule::Word {
+                allowed: MILLING_DIALECTS,
+            },
+        })
+        .into()),
+    }
 }
 
 /// No output may land on an input or on another output.

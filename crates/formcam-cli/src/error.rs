@@ -116,9 +116,6 @@ pub enum CliError {
         /// The job file.
         job: PathBuf,
     },
-    /// An unknown `--dialect`.
-    #[error("--dialect: {0}")]
-    Dialect(formcam_nc::NcError),
     /// `--allow` given with a TOML winding job.
     #[error("--allow: TOML jobs name the checks they accept in [checks] allow")]
     AllowForToml,

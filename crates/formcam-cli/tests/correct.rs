@@ -111,6 +111,44 @@ fn bad_input_gives_one_line_and_no_program() {
 }
 
 #[test]
+fn a_program_the_correction_does_not_understand_writes_nothing() {
+    let dir = scratch("refused");
+    let (m, _) = plate(&dir);
+    let prog = dir.join("polar.mpf");
+    std::fs::write(
+        &prog,
+        "G90 G0 X10 Y10 Z20\nG1 Z0 F800\nG1 AP=45 RP=10\nM30\n",
+    )
+    .unwrap();
+    let out = dir.join("out-refused/corrected.mpf");
+    let report = dir.join("out-refused/report.json");
+    let o = correct(&m, &prog, &out, &["--report", s(&report)]);
+    let err = one_line_error("polar", &o, &out);
+    assert!(
+        err.contains("polar.mpf: line 3: `G1 AP=45 RP=10`: polar coordinates (`AP`)"),
+        "{err}"
+    );
+    assert!(
+        !dir.join("out-refused").exists(),
+        "a refused run wrote files"
+    );
+    // `--dialect` names the option and the words allowed, as the job
+    // file's field does.
+    for bad in ["foo", "cldata"] {
+        let x = dir.join("x.mpf");
+        let o = correct(&m, &prog, &x, &["--dialect", bad]);
+        let err = one_line_error(bad, &o, &x);
+        assert!(
+            err.contains(&format!(
+                "--dialect \"{bad}\": allowed iso, fanuc, sinumerik-840d, sinumerik, 840d, \
+                 linuxcnc, marlin-xab"
+            )),
+            "{err}"
+        );
+    }
+}
+
+#[test]
 fn the_closed_loop_writes_its_rounds_and_names_a_bad_field() {
     // The loop's figures are checked in formcam-run's tests; here the
     // command: its files and its one-line error.

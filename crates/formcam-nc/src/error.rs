@@ -21,8 +21,9 @@ pub enum NcError {
         /// What the dialect allows.
         allowed: &'static str,
     },
-    /// The program itself is inconsistent (axis count, non-finite values, feeds).
-    #[error("program: {0}")]
+    /// The program itself is inconsistent (axis count, non-finite values,
+    /// feeds), or a milling program's line is refused (named by its line).
+    #[error("{}{}", program_prefix(.0), .0)]
     Program(#[from] ProgramFault),
     /// A template that is not valid TOML or cannot be used.
     #[error("template: {}{problem}", file_prefix(.file))]
@@ -81,6 +82,14 @@ impl NcError {
 /// `file: ` when there is a file.
 fn file_prefix(file: &Option<String>) -> String {
     file.as_ref().map(|f| format!("{f}: ")).unwrap_or_default()
+}
+
+/// `program: ` before a fault that names no line of a program.
+fn program_prefix(fault: &ProgramFault) -> &'static str {
+    match fault {
+        ProgramFault::Refused { .. } | ProgramFault::Truncated { .. } => "",
+        _ => "program: ",
+    }
 }
 
 /// Why a program (or a milling program's options) cannot be written or read.
@@ -207,6 +216,153 @@ pub enum ProgramFault {
         /// The program's nodes.
         nodes: usize,
     },
+    /// A milling program's word the reader does not follow.
+    #[error("line {line}: `{excerpt}`: {refusal}")]
+    Refused {
+        /// The line (1-based).
+        line: usize,
+        /// The line's text, quoted (at most 80 characters).
+        excerpt: String,
+        /// The word and what it would do.
+        refusal: Refusal,
+    },
+    /// A milling program whose last line stops in the middle of a word.
+    #[error(
+        "line {line}: `{excerpt}`: the program ends in the middle of {cut} (was the file cut \
+         off?); a complete last line ends with a line break or a whole word"
+    )]
+    Truncated {
+        /// The last line (1-based).
+        line: usize,
+        /// The line's text, quoted (at most 80 characters).
+        excerpt: String,
+        /// What is left open.
+        cut: Truncation,
+    },
+}
+
+/// A word of a milling program the correction does not follow: what it
+/// would do to the tool's path, and what to write instead. Each holds the
+/// word as written, quoted.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+pub enum Refusal {
+    /// Polar coordinates (`G16`, 840D `AP=`/`RP=`, poles `G110..G112`,
+    /// Fanuc's polar interpolation `G12.1`).
+    #[error("polar coordinates (`{word}`) are not supported; give the end point as X, Y, Z")]
+    Polar {
+        /// The word.
+        word: String,
+    },
+    /// A subprogram or macro call or definition (`M98`, `G65`, 840D `L123`,
+    /// `CALL`, LinuxCNC `o.. call`, `o.. sub`).
+    #[error(
+        "`{word}` calls a subprogram or macro, whose moves are not in this file; write them out \
+         as G0/G1/G2/G3 blocks"
+    )]
+    Subprogram {
+        /// The word.
+        word: String,
+    },
+    /// A canned cycle (`G81..G89`, 840D `CYCLE81(..)`, `POCKET3(..)`).
+    #[error("the canned cycle `{word}` is not supported; write its moves as G0/G1/G2/G3 blocks")]
+    Cycle {
+        /// The word.
+        word: String,
+    },
+    /// A spline (LinuxCNC `G5`, `G5.1`, `G5.2`; 840D `BSPLINE`, `ASPLINE`,
+    /// `CSPLINE`, `POLY`).
+    #[error("the spline `{word}` is not supported; write the path as G1 or G2/G3 blocks")]
+    Spline {
+        /// The word.
+        word: String,
+    },
+    /// A change of the coordinate system or of the axes' meaning (`G92`,
+    /// `G52`, `G10`, `G51`, `G68`, 840D frames and transformations, `G7`).
+    #[error(
+        "`{word}` changes the coordinate system, which is not supported; post the program in \
+         one work offset, without shifts, rotations, scaling or mirroring"
+    )]
+    Frame {
+        /// The word.
+        word: String,
+    },
+    /// Arcs in the planes of the U, V, W axes (LinuxCNC `G17.1..G19.1`).
+    #[error("`{word}`: arcs in the U, V, W planes are not supported; use G17, G18 or G19")]
+    Plane {
+        /// The word.
+        word: String,
+    },
+    /// A probing or skip move, which ends where the probe trips.
+    #[error(
+        "`{word}` is a probing move, which ends where the probe trips; correct a program \
+         without probing"
+    )]
+    Probe {
+        /// The word.
+        word: String,
+    },
+    /// Tool radius compensation (`G41`, `G42`, 840D `CUT3D..`), or a
+    /// length offset given in the program (`G43.1`).
+    #[error(
+        "`{word}` offsets the tool from the programmed path (compensation), which is not \
+         supported; post the program for the tool centre, with G40"
+    )]
+    Compensation {
+        /// The word.
+        word: String,
+    },
+    /// Jumps, loops and conditions.
+    #[error(
+        "`{word}` jumps, loops or branches, which is not supported; give the program with \
+         every move written out"
+    )]
+    Flow {
+        /// The word.
+        word: String,
+    },
+    /// An 840D arc form the reader does not compute (`CIP`, `CT`, `AR=`,
+    /// `TURN=`).
+    #[error("the arc form `{word}` is not supported; give G2/G3 with I, J, K or the radius (CR=)")]
+    ArcForm {
+        /// The word.
+        word: String,
+    },
+    /// A G code the reader does not know, on a line with axis words.
+    #[error("`{word}` with axis words is not supported; X, Y, Z are read in G0/G1/G2/G3 moves")]
+    AxesWithCode {
+        /// The word.
+        word: String,
+    },
+    /// An 840D keyword not known to leave the path alone (it may name a
+    /// subprogram).
+    #[error(
+        "`{word}` is a keyword the correction does not know (it may call a subprogram or \
+         change the path); give G0/G1/G2/G3 moves in X, Y, Z"
+    )]
+    Keyword {
+        /// The word.
+        word: String,
+    },
+}
+
+/// What the last line of a program leaves open.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+pub enum Truncation {
+    /// A letter or `NAME=` without its number (`X`, `X-`, `Z=`), quoted.
+    #[error("the word `{word}`")]
+    Word {
+        /// The word as written.
+        word: String,
+    },
+    /// A `(` comment without `)`.
+    #[error("a comment")]
+    Comment,
+    /// A `"` string without its closing `"`.
+    #[error("a string")]
+    String,
+    /// A `(` or `[` without its closing bracket.
+    #[error("a bracket")]
+    Bracket,
 }
 
 /// Why a template cannot be used.

@@ -42,7 +42,7 @@ mod template;
 mod toolpath;
 
 pub use dialect::Dialect;
-pub use error::{NcError, ProgramFault, TemplateProblem};
+pub use error::{NcError, ProgramFault, Refusal, TemplateProblem, Truncation};
 pub use modulo::{BOUND_DEG, ModuloStyle, keep_within_turns};
 pub use post::write;
 pub use program::{AxisSpec, Block, Feed, Motion, Plane, Program};

@@ -29,7 +29,10 @@
 //! coordinate-system changes (`G92`, `G52`, `G10`, `G51`, `G68`, Sinumerik
 //! frames), canned cycles, rotary or secondary axes, an incremental move from
 //! an unknown position, an arc whose end is not on its circle, arcs in
-//! inverse-time feed.
+//! inverse-time feed. `refuse` decides which words are read, passed over or
+//! refused (polar coordinates, splines, subprogram and cycle calls, frames,
+//! radius compensation, program flow: a typed [`crate::Refusal`]) and
+//! reports a last line cut off in the middle of a word.
 //!
 //! The words of each line come from the crate's one G-code lexer and the G
 //! codes from its modal state; `read` interprets them per line (positions,
@@ -37,6 +40,7 @@
 
 mod arc;
 mod read;
+mod refuse;
 #[cfg(test)]
 mod tests;
 mod write;

@@ -6,12 +6,13 @@ use formcam_files::quote;
 use std::ops::Range;
 
 use super::arc::{Arc, Centre};
+use super::refuse::{self, Verdict};
 use super::{
     ArcEdit, Line, MotionLine, Node, NodeKind, NumSpan, NumberFormat, Toolpath, ToolpathOptions,
 };
 use crate::lex::{self, Lexed, Syntax, Word, line_error};
 use crate::modal::{GCode, Modal, MotionMode};
-use crate::{Dialect, NcError, ProgramFault};
+use crate::{Dialect, NcError, ProgramFault, Refusal};
 
 /// Reads a milling program.
 pub fn read_toolpath(text: &str, options: &ToolpathOptions) -> Result<Toolpath, NcError> {
@@ -76,6 +77,36 @@ struct Reader<'a> {
     style: Style,
 }
 
+/// Why a line is not read: a message, or a word refused.
+enum Fault {
+    /// What is wrong, in words.
+    Text(String),
+    /// A word the reader does not follow.
+    Refused(Refusal),
+}
+
+impl From<String> for Fault {
+    fn from(what: String) -> Self {
+        Self::Text(what)
+    }
+}
+
+impl From<Refusal> for Fault {
+    fn from(refusal: Refusal) -> Self {
+        Self::Refused(refusal)
+    }
+}
+
+/// The fault `refusal` at line `line`, whose text is `text`.
+fn refused(line: usize, text: &str, refusal: Refusal) -> NcError {
+    ProgramFault::Refused {
+        line,
+        excerpt: quote(text.trim_end()).to_string(),
+        refusal,
+    }
+    .into()
+}
+
 /// What the words of one line say.
 #[derive(Default)]
 struct LineWords<'l> {
@@ -93,6 +124,8 @@ struct LineWords<'l> {
     forget: bool,
     /// `G28`/`G30` (which, without axis words, home every axis).
     bare_home: bool,
+    /// A G code the reader does not know (refused on a line with a move).
+    unknown_g: Option<String>,
 }
 
 impl LineWords<'_> {
@@ -116,10 +149,27 @@ impl Reader<'_> {
         let src = self.text;
         let text = &src[range.clone()];
         let err = |what: String| line_error(lineno, text, what);
+        let dialect = self.options.dialect;
+        if eol.is_empty()
+            && let Some(cut) = refuse::truncated(text, dialect)
+        {
+            return Err(ProgramFault::Truncated {
+                line: lineno,
+                excerpt: quote(text.trim_end()).to_string(),
+                cut,
+            }
+            .into());
+        }
+        refuse::keywords(text, dialect).map_err(|r| refused(lineno, text, r))?;
         let lx = lex::lex(text, range.start, lineno, self.syntax)?;
         let first = text.trim_start();
         let program_number = first.starts_with(['O', 'o', '%', '#', ':']);
-        let words = self.words(&lx, program_number).map_err(err)?;
+        let words = self
+            .words(&lx, program_number)
+            .map_err(|fault| match fault {
+                Fault::Text(what) => err(what),
+                Fault::Refused(r) => refused(lineno, text, r),
+            })?;
         if let Some(c) = &lx.complex {
             let iso_ident = !self.syntax.sinumerik
                 && !program_number
@@ -152,17 +202,23 @@ impl Reader<'_> {
     }
 
     /// Sorts the words of a line and applies its G codes to the modal state.
-    fn words<'l>(&mut self, lx: &'l Lexed, program_number: bool) -> Result<LineWords<'l>, String> {
+    fn words<'l>(&mut self, lx: &'l Lexed, program_number: bool) -> Result<LineWords<'l>, Fault> {
         let mut w = LineWords {
             radius: lx.cr.clone(),
             ..LineWords::default()
         };
+        let sinumerik = self.syntax.sinumerik;
+        let moves = lx.cr.is_some()
+            || lx.words.iter().any(|w| {
+                matches!(w.letter, b'X' | b'Y' | b'Z' | b'I' | b'J' | b'K')
+                    || (w.letter == b'R' && !sinumerik)
+            });
         for word in &lx.words {
             match word.letter {
                 b'X' | b'Y' | b'Z' => {
                     let a = (word.letter - b'X') as usize;
                     if w.axes[a].is_some() {
-                        return Err(format!("`{}` twice", word.letter as char));
+                        return Err(format!("`{}` twice", word.letter as char).into());
                     }
                     w.axes[a] = Some(word);
                 }
@@ -173,20 +229,49 @@ impl Reader<'_> {
                     return Err(format!(
                         "axis `{}`: only X, Y and Z are read",
                         word.letter as char
-                    ));
+                    )
+                    .into());
                 }
-                b'G' => self.g_word(word, &mut w)?,
+                b'G' => self.g_word(word, moves, &mut w)?,
+                b'M' => {
+                    if let Some(r) = refuse::m_code(word.value) {
+                        return Err(r.into());
+                    }
+                }
+                b'L' if sinumerik => {
+                    return Err(Refusal::Subprogram {
+                        word: format!("L{}", word.value),
+                    }
+                    .into());
+                }
                 _ => {}
             }
+        }
+        if moves && let Some(word) = w.unknown_g.take() {
+            return Err(Refusal::AxesWithCode { word }.into());
         }
         Ok(w)
     }
 
-    /// A `G` word: its mode taken on, or refused.
-    fn g_word<'l>(&mut self, word: &'l Word, w: &mut LineWords<'l>) -> Result<(), String> {
+    /// A `G` word: its mode taken on, passed over, or refused; `moves`:
+    /// the line has axis, centre or radius words.
+    fn g_word<'l>(
+        &mut self,
+        word: &'l Word,
+        moves: bool,
+        w: &mut LineWords<'l>,
+    ) -> Result<(), Fault> {
         let Some(code) = GCode::of(word.value, self.syntax.sinumerik) else {
-            return Err(format!("`G{}` is not a G code", word.value));
+            return Err(format!("`G{}` is not a G code", word.value).into());
         };
+        match refuse::g_code(word.value, code, self.options.dialect, moves) {
+            Verdict::Refused(r) => return Err(r.into()),
+            Verdict::Unknown => {
+                w.unknown_g
+                    .get_or_insert_with(|| format!("G{}", word.value));
+            }
+            Verdict::Passed => {}
+        }
         match code {
             GCode::Motion(_) => {
                 w.g_motion = Some(word);
@@ -199,10 +284,6 @@ impl Reader<'_> {
                 w.forget = true;
                 w.bare_home |= g != 53;
             }
-            GCode::Polar => return Err("polar coordinates (`G16`) are not supported".into()),
-            GCode::Preset | GCode::PresetOther => return Err(coordinate_system(92)),
-            GCode::CoordinateSystem(g) => return Err(coordinate_system(g)),
-            GCode::Cycle(g) => return Err(format!("the canned cycle `G{g}` is not supported")),
             _ => {}
         }
         self.modal.apply(code);
@@ -409,10 +490,6 @@ impl Reader<'_> {
         }
         Ok(())
     }
-}
-
-fn coordinate_system(g: u32) -> String {
-    format!("`G{g}` changes the coordinate system, which is not supported")
 }
 
 /// Where a missing axis word goes: after the last axis word, else after the

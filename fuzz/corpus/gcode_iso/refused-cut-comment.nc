@@ -1,0 +1,6 @@
+%
+O1000 (REFUSED)
+G21 G90 G17
+G0 X0. Y0. Z5.
+G1 Z0. F800.
+G1 X12. (finishing pa

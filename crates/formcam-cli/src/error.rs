@@ -4,7 +4,7 @@
 use std::io;
 use std::path::PathBuf;
 
-use formcam_machine::MachineError;
+use formcam_machine::{AxesCsvError, MachineError};
 use formcam_run::RunError;
 
 /// Why a command failed.
@@ -48,31 +48,14 @@ pub enum CliError {
         /// What is wrong, naming the link or point and the field.
         source: MachineError,
     },
-    /// An axes file without a header row.
-    #[error("{}: empty file (need a header row)", path.display())]
-    AxesEmpty {
+    /// An axes file that cannot be read: no header, a missing column, a
+    /// cell that is no finite number.
+    #[error("{}{}{source}", path.display(), if source.line().is_some() { ":" } else { ": " })]
+    Axes {
         /// The axes file.
         path: PathBuf,
-    },
-    /// An axes file without a column for one of the machine's axes.
-    #[error("{}:1: no column \"{axis}\" (the machine's axes are {axes})", path.display())]
-    AxesColumn {
-        /// The axes file.
-        path: PathBuf,
-        /// The axis missing.
-        axis: String,
-        /// The machine's axes, comma-separated.
-        axes: String,
-    },
-    /// A cell of an axes file that is no finite number.
-    #[error("{}:{line}: column \"{column}\": not a finite number", path.display())]
-    AxesNumber {
-        /// The axes file.
-        path: PathBuf,
-        /// The line (1-based).
-        line: usize,
-        /// The column's name.
-        column: String,
+        /// What is wrong, naming the line and the column.
+        source: AxesCsvError,
     },
     /// The outputs could not be written (an input in the way, a folder
     /// formcam did not write, another run writing there, the file system).

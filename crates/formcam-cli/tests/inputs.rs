@@ -83,6 +83,51 @@ fn a_folder_as_an_axes_file_is_refused() {
 }
 
 #[test]
+fn a_bad_axes_file_names_the_file_line_column_and_cell() {
+    let dir = scratch("bad-axes");
+    let points = dir.join("points.csv");
+    let fk = |name: &str, text: &str| {
+        let axes = dir.join(name);
+        std::fs::write(&axes, text).unwrap();
+        let o = run(&[
+            "machine",
+            "fk",
+            s(&machines().join("winder-4axis.toml")),
+            "--axes",
+            s(&axes),
+            "-o",
+            s(&points),
+        ]);
+        let err = one_line_error(name, &o, &points);
+        assert!(err.contains(s(&axes)), "{err}");
+        err
+    };
+    let err = fk(
+        "cell.csv",
+        "# hand-written\nA,X,Y,B\n0,0,0,0\n0,1e999,0,0\n",
+    );
+    assert!(
+        err.ends_with(":4: column \"X\": not a finite number: \"1e999\""),
+        "{err}"
+    );
+    let err = fk("header.csv", "# hand-written\nA,X,Y\n0,0,0\n");
+    assert!(
+        err.ends_with(":2: no column \"B\" (the machine's axes are A, X, Y, B)"),
+        "{err}"
+    );
+    let err = fk("short.csv", "A,X,Y,B\n0,0,0\n");
+    assert!(
+        err.ends_with(":2: column \"B\" (cell 4): missing, the row has 3 cells"),
+        "{err}"
+    );
+    let err = fk("empty.csv", "\n# nothing\n");
+    assert!(
+        err.ends_with(": empty file (need a header row naming the machine's axes: A, X, Y, B)"),
+        "{err}"
+    );
+}
+
+#[test]
 fn an_input_over_the_cap_is_refused_and_the_cap_can_be_raised() {
     let dir = scratch("cap");
     // A valid job padded with a comment to just over 1 MiB.

@@ -133,6 +133,62 @@ pub enum IkFault {
     },
 }
 
+/// Why an axes CSV (`formcam machine fk --axes`) cannot be read; lines are
+/// 1-based, names and cells quoted short and escaped.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+pub enum AxesCsvError {
+    /// No header row: the text is empty, blank or comments only.
+    #[error("empty file (need a header row naming the machine's axes: {axes})")]
+    Empty {
+        /// The machine's axes, comma-separated.
+        axes: String,
+    },
+    /// The header has no column for one of the machine's axes.
+    #[error("{line}: no column \"{axis}\" (the machine's axes are {axes})")]
+    NoColumn {
+        /// The header's line.
+        line: usize,
+        /// The axis missing.
+        axis: String,
+        /// The machine's axes, comma-separated.
+        axes: String,
+    },
+    /// A row too short to reach a column.
+    #[error("{line}: column \"{column}\" (cell {position}): missing, the row has {cells} cells")]
+    MissingCell {
+        /// The row's line.
+        line: usize,
+        /// The column's name.
+        column: String,
+        /// The column's place in the header (1-based).
+        position: usize,
+        /// How many cells the row has.
+        cells: usize,
+    },
+    /// A cell that is no finite number.
+    #[error("{line}: column \"{column}\": not a finite number: \"{cell}\"")]
+    NotANumber {
+        /// The row's line.
+        line: usize,
+        /// The column's name.
+        column: String,
+        /// The cell's text.
+        cell: String,
+    },
+}
+
+impl AxesCsvError {
+    /// The line the error is on; none for an empty file.
+    pub fn line(&self) -> Option<usize> {
+        match self {
+            Self::Empty { .. } => None,
+            Self::NoColumn { line, .. }
+            | Self::MissingCell { line, .. }
+            | Self::NotANumber { line, .. } => Some(*line),
+        }
+    }
+}
+
 impl MachineError {
     /// A field error at `place`.
     pub fn field(

@@ -8,6 +8,7 @@
 //! (Denavit–Hartenberg parameters or a plain origin), driven by an NC axis or
 //! fixed. One link carries the mandrel frame, one key point is the payout point.
 
+mod axes_csv;
 mod band;
 mod chain;
 mod error;
@@ -20,8 +21,9 @@ pub mod shipped;
 mod target;
 mod urdf;
 
+pub use axes_csv::{AxesRow, read_axes_csv};
 pub use band::{BandPassed, band_passed};
-pub use error::{IkFault, MachineError, UrdfFault};
+pub use error::{AxesCsvError, IkFault, MachineError, UrdfFault};
 pub use file::{
     DhSpec, JointType, LinkSpec, MachineFile, MachineKind, MachineTable, OriginSpec, PointSpec,
     SpindleFollows, VisualSpec,

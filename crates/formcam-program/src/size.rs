@@ -132,7 +132,12 @@ pub fn estimate(
         let field = |e: WindingError| in_layer_error(layered, i + 1, e.into());
         let (on, _) = hoop_mandrel(mandrel.clone(), w).map_err(field)?;
         let spec = w.layer_spec(&on).map_err(field)?;
-        let circuits = circuits(&on, &spec.ends, spec.band_width, spec.overlap, grown);
+        // A hoop layer is one circuit: its angle follows from the band.
+        let circuits = if kind == LayerKind::Hoop {
+            1
+        } else {
+            circuits(&on, &spec.ends, spec.band_width, spec.overlap, grown)
+        };
         let path_points = spec.samples as u64;
         let blocks = if stage == Stage::Program {
             circuits * circuit_points.div_ceil(POINTS_PER_BLOCK).max(1)

@@ -37,6 +37,10 @@ const PER_BLOCK: u64 = 256;
 /// take one block per 27 to 170 points within the default tolerances, so 16
 /// keeps the estimate on the large side.
 const POINTS_PER_BLOCK: u64 = 16;
+/// The most blocks per circuit in the estimate: a circuit's blocks follow its
+/// shape within the tolerances, not its sampling (the benchmark's vessel,
+/// 333 334 points a circuit, takes about 200 blocks a circuit).
+const MAX_BLOCKS_PER_CIRCUIT: u64 = 1024;
 /// The circuit's points of a placement head without an `[eye]`.
 const PLACEMENT_POINTS: u64 = 2001;
 
@@ -140,7 +144,10 @@ pub fn estimate(
         };
         let path_points = spec.samples as u64;
         let blocks = if stage == Stage::Program {
-            circuits * circuit_points.div_ceil(POINTS_PER_BLOCK).max(1)
+            circuits
+                * circuit_points
+                    .div_ceil(POINTS_PER_BLOCK)
+                    .clamp(1, MAX_BLOCKS_PER_CIRCUIT)
         } else {
             0
         };

@@ -34,12 +34,22 @@ struct Cli {
         value_parser = clap::value_parser!(u64).range(1..=MAX_INPUT_MB)
     )]
     max_input_mb: u64,
+    /// The most a run may hold in memory, MiB: a winding job estimated
+    /// larger is refused before any layer is planned.
+    #[arg(
+        long,
+        global = true,
+        value_name = "MB",
+        default_value_t = formcam_files::DEFAULT_MAX_MEMORY_BYTES / MIB,
+        value_parser = clap::value_parser!(u64).range(1..=MAX_INPUT_MB)
+    )]
+    max_memory_mb: u64,
 }
 
 /// Bytes per MiB.
 const MIB: u64 = 1024 * 1024;
 
-/// The largest `--max-input-mb` (1 TiB).
+/// The largest `--max-input-mb` and `--max-memory-mb` (1 TiB).
 const MAX_INPUT_MB: u64 = 1024 * 1024;
 
 #[derive(Debug, Subcommand)]
@@ -181,6 +191,7 @@ enum MachineCommand {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     formcam_files::set_max_input_bytes(cli.max_input_mb * MIB);
+    formcam_files::set_max_memory_bytes(cli.max_memory_mb * MIB);
     let result = match cli.command {
         Command::Wind {
             what,

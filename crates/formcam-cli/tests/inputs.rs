@@ -1,4 +1,5 @@
-//! Inputs read with care: only regular files, at most `--max-input-mb`, and
+//! Inputs read with care: only regular files, at most `--max-input-mb`, a
+//! winding job sized against `--max-memory-mb` before it is planned, and
 //! machine files in URDF as well as TOML wherever a machine is taken.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
@@ -175,6 +176,28 @@ fn max_input_mb_must_be_positive() {
     let o = run(&["--max-input-mb", "0", "machine", "show", "winder-4axis"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--max-input-mb"), "{}", stderr(&o));
+}
+
+#[test]
+fn a_job_over_the_memory_budget_is_refused_and_the_budget_can_be_raised() {
+    let dir = scratch("budget");
+    let job = dir.join("job.toml");
+    std::fs::write(&job, example("tube-layers-4axis.toml")).unwrap();
+    let out = dir.join("out");
+    let o = run(&["--max-memory-mb", "1", "wind", s(&job), "-o", s(&out)]);
+    let err = one_line_error("budget", &o, &out);
+    assert!(
+        err.contains(&format!("{}: [[layer]]: 4 layers", job.display())),
+        "{err}"
+    );
+    assert!(err.contains("over the memory budget of 1 MiB"), "{err}");
+    assert!(
+        err.contains("raise the budget with --max-memory-mb"),
+        "{err}"
+    );
+    let o = run(&["wind", s(&job), "-o", s(&out), "--max-memory-mb", "64"]);
+    ok("raised", &o);
+    assert_eq!(summary(&out)["layers"].as_u64(), Some(4));
 }
 
 /// `formcam machine show FILE`'s table.

@@ -183,6 +183,42 @@ pub enum ProgramError {
     /// (`layers[1].windAngle`).
     #[error(transparent)]
     WindFile(#[from] WindFileError),
+    /// The program's estimated size exceeds the memory budget: refused
+    /// before any layer is planned.
+    #[error(
+        "[[layer]]: {layers} layers, about {points} points and {blocks} blocks, would take about \
+         {mib} MiB, over the memory budget of {budget_mib} MiB; refused before planning (raise \
+         the budget with --max-memory-mb, or split the job)"
+    )]
+    TooLarge {
+        /// The job's layers.
+        layers: usize,
+        /// The points planned, estimated.
+        points: u64,
+        /// The program's blocks, estimated.
+        blocks: u64,
+        /// The estimate, MiB.
+        mib: u64,
+        /// The budget, MiB.
+        budget_mib: u64,
+    },
+    /// What the planned layers keep exceeds the memory budget (the
+    /// estimate was too low): the run stops there.
+    #[error(
+        "[[layer]]: the {layers} layers planned keep {blocks} blocks and their files, about {mib} \
+         MiB, over the memory budget of {budget_mib} MiB; stopped (raise the budget with \
+         --max-memory-mb, or split the job)"
+    )]
+    OverBudget {
+        /// The layers planned so far.
+        layers: usize,
+        /// Their blocks.
+        blocks: u64,
+        /// What they keep, MiB.
+        mib: u64,
+        /// The budget, MiB.
+        budget_mib: u64,
+    },
     /// The run was cancelled by its progress hook.
     #[error(transparent)]
     Cancelled(#[from] formcam_progress::Cancelled),

@@ -13,6 +13,7 @@ mod error;
 mod job;
 mod plan;
 mod post;
+mod size;
 mod windfile;
 
 pub use blocks::{Assembled, LayerBlocks, TimedBlock, axis_limits, nc};
@@ -22,7 +23,9 @@ pub use job::{
     Ik, JobMachine, Layers, MachineSource, MotionJob, Post, Times, WINDING_JOB, WindImport, WindJob,
 };
 pub use plan::{
-    LayerBody, Stage, Wound, WoundLayer, WoundProgram, plan_program, plan_until, plan_until_with,
+    LayerBody, Stage, Wound, WoundLayer, WoundProgram, plan_each, plan_program, plan_until,
+    plan_until_with,
 };
 pub use post::write_program;
+pub use size::{LAYER_BATCH, ProgramSize, estimate};
 pub use windfile::{EYE_CLEARANCE_MM, SPEC_VERSION};

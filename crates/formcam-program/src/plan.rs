@@ -10,7 +10,7 @@ use formcam_machine::{
 use formcam_progress::{Phase, Progress, Silent, Step, Tally};
 use formcam_winding::eye::{EyeSpec, EyeTrajectory, eye_trajectory};
 use formcam_winding::job::{LayerKind, Mandrel, WindingSpec};
-use formcam_winding::{Circuit, Layer, WindingError, plan_layer};
+use formcam_winding::{Circuit, Layer, PassPath, WindingError, plan_layer};
 use rayon::prelude::*;
 
 use crate::ProgramError;
@@ -18,6 +18,7 @@ use crate::blocks::{Assembled, LayerBlocks, assemble, layer_blocks, nc, skip_blo
 use crate::checks::{Violated, enforce, eye_violations};
 use crate::error::in_layer;
 use crate::job::{JobMachine, Layers, Post, WindJob};
+use crate::size::{LAYER_BATCH, estimate, kept_bytes, mib};
 
 /// How far the pipeline goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -49,6 +50,10 @@ pub struct WoundProgram {
     pub blocks: Vec<LayerBlocks>,
     /// The post-processor that writes it.
     pub post: Post,
+    /// The most per-point records (path points, eye points, targets) its
+    /// layers held at once while it was planned: every layer's with
+    /// [`plan_until_with`], a batch's with [`plan_each`].
+    pub peak_points: usize,
 }
 
 impl WoundProgram {
@@ -147,14 +152,51 @@ pub fn plan_until(job: &WindJob, stage: Stage) -> Result<WoundProgram, ProgramEr
 
 /// [`plan_until`] reporting to `progress` per layer and phase (path, eye,
 /// axes, blocks, assembly); [`ProgramError::Cancelled`] when it asks to stop.
+/// Every layer is kept whole (eye, targets, axes).
 pub fn plan_until_with(
     job: &WindJob,
     stage: Stage,
     progress: &dyn Progress,
 ) -> Result<WoundProgram, ProgramError> {
+    plan(job, stage, progress, Keep::Whole, &mut |_, _| Ok(()))
+}
+
+/// [`plan_until_with`] handing each layer, once planned, to `each` (its index
+/// and the layer with its path, eye, targets and axes), in winding order,
+/// and then dropping that per-point data: the program returned keeps each
+/// layer's report, pattern and blocks, and the memory of a run stays bounded
+/// by a batch of [`LAYER_BATCH`] layers, its blocks and what `each` keeps.
+/// An error of `each` stops the run.
+pub fn plan_each<E: From<ProgramError>>(
+    job: &WindJob,
+    stage: Stage,
+    progress: &dyn Progress,
+    each: &mut dyn FnMut(usize, &WoundLayer) -> Result<(), E>,
+) -> Result<WoundProgram, E> {
+    plan(job, stage, progress, Keep::Summary, each)
+}
+
+/// What the program keeps of a layer once it is handed on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Keep {
+    /// Everything planned.
+    Whole,
+    /// The report, the pattern and the blocks.
+    Summary,
+}
+
+/// The one pipeline: checks before planning, the layers in batches, the
+/// assembly.
+fn plan<E: From<ProgramError>>(
+    job: &WindJob,
+    stage: Stage,
+    progress: &dyn Progress,
+    keep: Keep,
+    each: &mut dyn FnMut(usize, &WoundLayer) -> Result<(), E>,
+) -> Result<WoundProgram, E> {
     let layered = job.is_layered();
     if layered && stage < Stage::Program {
-        return Err(ProgramError::LayeredStage);
+        return Err(ProgramError::LayeredStage.into());
     }
     let machine = if stage >= Stage::Axes {
         Some(job.machine.as_ref().ok_or(if layered {
@@ -171,29 +213,60 @@ pub fn plan_until_with(
     };
     let mut warnings = job.warnings.clone();
     warnings.extend(job.mandrel.warnings());
-    let eye = job.eye.as_ref().map(|e| e.spec(read)).transpose()?;
-    // 1. Every layer in order, each on the mandrel grown by those before.
-    let mut layers = plan_layers(job, &mut warnings, progress)?;
+    let eye = job
+        .eye
+        .as_ref()
+        .map(|e| e.spec(read))
+        .transpose()
+        .map_err(ProgramError::from)?;
     let placement = machine.is_some_and(|m| m.machine.roles.kind == MachineKind::Placement);
     let with_eye = stage >= Stage::Eye && !placement;
-    if with_eye && eye.is_none() {
-        return Err(ProgramError::MissingTable { table: "[eye]" });
-    }
-    // 2. Eye, axes and blocks of every winding layer, in parallel.
-    let eye = if with_eye { eye.as_ref() } else { None };
-    let phases = Phases::new(stage, &layers, progress);
-    let done: Vec<Result<Option<LayerBlocks>, ProgramError>> = layers
-        .par_iter_mut()
-        .enumerate()
-        .map(|(i, l)| match &mut l.body {
-            LayerBody::Skip { .. } => Ok(None),
-            LayerBody::Wind(w) => wind_layer(job, &phases, machine, eye, &l.label, l.one_way, w)
-                .map_err(|e| in_layer_error(layered, i + 1, e)),
-        })
-        .collect();
-    let mut own = Vec::with_capacity(done.len());
-    for d in done {
-        own.push(d?);
+    // 1. Before planning: every layer's fields and the program's size.
+    let budget = formcam_files::max_memory_bytes();
+    let eye_used = if with_eye { eye.as_ref() } else { None };
+    estimate(job, stage, eye_used)?.within(budget)?;
+    // 2. The layers in batches: each layer's path in order on the mandrel
+    // grown by those before, then the batch's eye, axes and blocks in
+    // parallel, each layer handed on in order.
+    let specs = job.layers.specs();
+    let total = specs.len();
+    let phases = Phases::new(stage, job, progress);
+    let axes = machine.map_or(0, |m| m.machine.axes.len() as u64);
+    let mut layers: Vec<WoundLayer> = Vec::with_capacity(total);
+    let mut own: Vec<Option<LayerBlocks>> = Vec::with_capacity(total);
+    let mut grown = 0.0;
+    let mut held = Held::default();
+    for first in (0..total).step_by(LAYER_BATCH) {
+        let range = first..(first + LAYER_BATCH).min(total);
+        let mut batch = plan_layers(job, range, &mut grown, &mut warnings, progress)?;
+        if first == 0 && with_eye && eye.is_none() {
+            return Err(ProgramError::MissingTable { table: "[eye]" }.into());
+        }
+        let done: Vec<Result<Option<LayerBlocks>, ProgramError>> = batch
+            .par_iter_mut()
+            .enumerate()
+            .map(|(k, l)| match &mut l.body {
+                LayerBody::Skip { .. } => Ok(None),
+                LayerBody::Wind(w) => {
+                    wind_layer(job, &phases, machine, eye_used, &l.label, l.one_way, w)
+                        .map_err(|e| in_layer_error(layered, first + k + 1, e))
+                }
+            })
+            .collect();
+        held.batch(&batch);
+        for (k, (mut l, d)) in batch.into_iter().zip(done).enumerate() {
+            let blocks = d?;
+            each(first + k, &l)?;
+            held.keep(&l, blocks.as_ref(), axes, budget)?;
+            if keep == Keep::Summary {
+                shed(&mut l);
+            }
+            layers.push(l);
+            own.push(blocks);
+        }
+        if keep == Keep::Whole {
+            held.kept_whole(&layers);
+        }
     }
     let mut wound = WoundProgram {
         stage,
@@ -203,11 +276,14 @@ pub fn plan_until_with(
         program: None,
         blocks: Vec::new(),
         post: job.post(),
+        peak_points: held.peak,
     };
     if let (Stage::Program, Some(m)) = (stage, machine) {
         // 3. In order: the layers' blocks (a skip starts where the layer
         // before ends), the checks, the whole program.
-        progress.checkpoint(Step::new(Phase::Assembly, 0, 1))?;
+        progress
+            .checkpoint(Step::new(Phase::Assembly, 0, 1))
+            .map_err(ProgramError::from)?;
         let blocks = in_order(job, &m.machine, &wound.layers, own)?;
         let violated: Vec<Violated> = blocks.iter().flat_map(|b| b.violated.clone()).collect();
         enforce(&job.allow, &violated)?;
@@ -221,15 +297,90 @@ pub fn plan_until_with(
         enforce(&job.allow, &program.violated)?;
         wound.blocks = blocks;
         wound.program = Some(program);
-        progress.checkpoint(Step::new(Phase::Assembly, 1, 1))?;
+        progress
+            .checkpoint(Step::new(Phase::Assembly, 1, 1))
+            .map_err(ProgramError::from)?;
     }
     Ok(wound)
 }
 
-/// The layers of a job planned in order: skips as they are, winding layers
-/// on the mandrel grown by the layers before.
+/// The per-point records a planned layer holds: its path points, its eye's
+/// points and its targets.
+fn points_held(l: &WoundLayer) -> usize {
+    l.wound().map_or(0, |w| {
+        w.layer.points.len() + w.eye.as_ref().map_or(0, |e| e.points.len()) + w.targets.len()
+    })
+}
+
+/// What planning holds: the most per-point records at once, and the bytes
+/// the layers handed on keep (their files and blocks), checked against the
+/// budget as each layer comes.
+#[derive(Debug, Default)]
+struct Held {
+    peak: usize,
+    blocks: u64,
+    bytes: u64,
+    layers: usize,
+}
+
+impl Held {
+    /// A batch planned: its layers' points are held together.
+    fn batch(&mut self, batch: &[WoundLayer]) {
+        self.peak = self.peak.max(batch.iter().map(points_held).sum());
+    }
+
+    /// Every layer kept whole: all their points are held.
+    fn kept_whole(&mut self, layers: &[WoundLayer]) {
+        self.peak = self.peak.max(layers.iter().map(points_held).sum());
+    }
+
+    /// A layer handed on: what it keeps, against the budget.
+    fn keep(
+        &mut self,
+        l: &WoundLayer,
+        blocks: Option<&LayerBlocks>,
+        axes: u64,
+        budget: u64,
+    ) -> Result<(), ProgramError> {
+        let n = blocks.map_or(1, |b| b.blocks.len() as u64);
+        let (path, circuit) = l.wound().map_or((0, 0), |w| {
+            (w.layer.points.len() as u64, w.targets.len() as u64)
+        });
+        self.layers += 1;
+        self.blocks += n;
+        self.bytes += kept_bytes(path, circuit, n, axes);
+        if self.bytes > budget {
+            return Err(ProgramError::OverBudget {
+                layers: self.layers,
+                blocks: self.blocks,
+                mib: mib(self.bytes),
+                budget_mib: mib(budget),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// A layer handed on keeps its report, pattern and blocks: its path, eye,
+/// targets and axes are dropped.
+fn shed(l: &mut WoundLayer) {
+    if let LayerBody::Wind(w) = &mut l.body {
+        w.eye = None;
+        w.targets = Vec::new();
+        w.track = None;
+        w.layer.points = Vec::new();
+        w.layer.thickness = Vec::new();
+        w.layer.pass_path = PassPath::Points(Vec::new());
+    }
+}
+
+/// The layers `range` of a job planned in order: skips as they are, winding
+/// layers on the mandrel grown by the layers before (`grown`, mm, carried
+/// from batch to batch).
 fn plan_layers(
     job: &WindJob,
+    range: std::ops::Range<usize>,
+    grown: &mut f64,
     warnings: &mut Vec<String>,
     progress: &dyn Progress,
 ) -> Result<Vec<WoundLayer>, ProgramError> {
@@ -239,10 +390,10 @@ fn plan_layers(
     };
     let layered = matches!(job.layers, Layers::Multi(_));
     let specs = job.layers.specs();
-    let mut grown = 0.0;
-    let mut out = Vec::with_capacity(specs.len());
+    let mut out = Vec::with_capacity(range.len());
     let total = specs.len() as u64;
-    for (i, w) in specs.iter().enumerate() {
+    let end = range.end as u64;
+    for (i, w) in specs.iter().enumerate().take(range.end).skip(range.start) {
         progress.checkpoint(Step::new(Phase::Path, i as u64, total))?;
         let kind = w.kind.unwrap_or_default();
         let label = if layered {
@@ -267,7 +418,7 @@ fn plan_layers(
         }
         let mandrel = job
             .mandrel
-            .grown(grown)
+            .grown(*grown)
             .and_then(|g| g.build(read))
             .map_err(field)?;
         let (mandrel, z_shift) = hoop_mandrel(mandrel, w).map_err(field)?;
@@ -292,16 +443,16 @@ fn plan_layers(
                 mandrel,
                 z_shift,
                 layer,
-                grown,
+                grown: *grown,
                 thickness,
                 eye: None,
                 targets: Vec::new(),
                 track: None,
             })),
         });
-        grown += thickness;
+        *grown += thickness;
     }
-    progress.checkpoint(Step::new(Phase::Path, total, total))?;
+    progress.checkpoint(Step::new(Phase::Path, end, total))?;
     Ok(out)
 }
 
@@ -315,8 +466,9 @@ struct Phases<'p> {
 }
 
 impl<'p> Phases<'p> {
-    fn new(stage: Stage, layers: &[WoundLayer], progress: &'p dyn Progress) -> Self {
-        let n = layers.iter().filter(|l| l.wound().is_some()).count() as u64;
+    fn new(stage: Stage, job: &WindJob, progress: &'p dyn Progress) -> Self {
+        let skip = |w: &&WindingSpec| job.is_layered() && w.kind == Some(LayerKind::Skip);
+        let n = job.layers.specs().iter().filter(|w| !skip(w)).count() as u64;
         Self {
             stage,
             eye: Tally::new(progress, Phase::Eye, n),
@@ -328,7 +480,10 @@ impl<'p> Phases<'p> {
 
 /// A hoop layer on a vessel covers its cylinder: planned on that cylinder,
 /// its targets moved to where the cylinder starts.
-fn hoop_mandrel(mandrel: Mandrel, w: &WindingSpec) -> Result<(Mandrel, f64), WindingError> {
+pub(crate) fn hoop_mandrel(
+    mandrel: Mandrel,
+    w: &WindingSpec,
+) -> Result<(Mandrel, f64), WindingError> {
     match (&mandrel, w.kind) {
         (Mandrel::Vessel(v), Some(LayerKind::Hoop)) => {
             let (z1, z2) = v.cylinder_range();
@@ -351,7 +506,7 @@ fn layer_warnings(layered: bool, layer: usize, w: &WindingSpec, mandrel: &Mandre
 }
 
 /// An error of layer `layer`, its winding fields renamed in multi-layer jobs.
-fn in_layer_error(layered: bool, layer: usize, e: ProgramError) -> ProgramError {
+pub(crate) fn in_layer_error(layered: bool, layer: usize, e: ProgramError) -> ProgramError {
     match e {
         ProgramError::Winding(w) if layered => ProgramError::Winding(in_layer(layer, w)),
         other => other,

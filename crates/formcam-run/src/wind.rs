@@ -13,7 +13,7 @@ use formcam_machine::BandPassed;
 use formcam_machine::Machine;
 use formcam_program::{
     Assembled, Check, MachineSource, Post, ProgramError, Stage, WindJob, Wound, WoundLayer,
-    WoundProgram, nc, plan_until_with, write_program,
+    WoundProgram, nc, plan_each, plan_until_with, write_program,
 };
 use formcam_progress::{Phase, Progress, Silent, Step};
 use formcam_winding::Layer;
@@ -146,7 +146,22 @@ fn run(
     progress: &dyn Progress,
 ) -> Result<RunOutput, RunError> {
     let at = |e: ProgramError| RunError::wind(path, e);
-    let wound = plan_until_with(job, stage, progress).map_err(at)?;
+    // A multi-layer job's layer files are made as each layer is planned,
+    // which then drops its per-point data.
+    let mut each = LayerFiles::default();
+    let wound = if job.is_layered() {
+        let m = job.machine.as_ref().map(|jm| &jm.machine);
+        plan_each(job, stage, progress, &mut |i, l| match m {
+            Some(m) => each.add(m, i, l).map_err(Halt::Run),
+            None => Ok(()),
+        })
+        .map_err(|h| match h {
+            Halt::Program(e) => at(e),
+            Halt::Run(e) => e,
+        })?
+    } else {
+        plan_until_with(job, stage, progress).map_err(at)?
+    };
     let program = match &wound.program {
         Some(p) => {
             progress.checkpoint(Step::new(Phase::Post, 0, 1))?;
@@ -159,7 +174,7 @@ fn run(
     };
     progress.checkpoint(Step::new(Phase::Files, 0, 1))?;
     let mut output = if job.is_layered() {
-        layered(job, &wound, program)?
+        layered(job, &wound, program, each)?
     } else {
         single(path, job, &wound, program)?
     };
@@ -262,24 +277,35 @@ fn single(
     })
 }
 
-/// A multi-layer job: each layer's outputs in `layer-NN/`, the program's
-/// axes over time in `axes.csv`.
-fn layered(
-    job: &WindJob,
-    wound: &WoundProgram,
-    program: Option<(&Assembled, Vec<u8>)>,
-) -> Result<RunOutput, RunError> {
-    let (Some(m), Some(jm), Some((p, text))) = (&wound.machine, &job.machine, program) else {
-        return Ok(RunOutput::default());
-    };
-    let mut files = Vec::new();
-    let mut per_layer = Vec::with_capacity(wound.layers.len());
-    for (i, (l, b)) in wound.layers.iter().zip(&wound.blocks).enumerate() {
+/// Why planning a multi-layer job stopped: the plan, or a layer's files.
+enum Halt {
+    Program(ProgramError),
+    Run(RunError),
+}
+
+impl From<ProgramError> for Halt {
+    fn from(e: ProgramError) -> Self {
+        Self::Program(e)
+    }
+}
+
+/// A multi-layer job's per-layer files (`layer-NN/`), made as each layer is
+/// planned, and each layer's axes summary: limits kept, the largest IK
+/// residual.
+#[derive(Default)]
+struct LayerFiles {
+    files: Vec<ResultFile>,
+    axes: Vec<(bool, f64)>,
+}
+
+impl LayerFiles {
+    /// Layer `i` (0-based), planned on `m`: its files and its axes summary.
+    fn add(&mut self, m: &Machine, i: usize, l: &WoundLayer) -> Result<(), RunError> {
         let Some(w) = l.wound() else {
-            per_layer
-                .push(json!({ "layer": i + 1, "kind": l.kind, "blocks": 1, "time_s": b.times[0] }));
-            continue;
+            self.axes.push((true, 0.0));
+            return Ok(());
         };
+        let files = &mut self.files;
         let dir = format!("layer-{:02}", i + 1);
         let title = format!("{}: {} mandrel, one pass", l.label, w.mandrel.kind());
         files.push(ResultFile::new(
@@ -297,7 +323,7 @@ fn layered(
                 formcam_plot::eye_svg(&format!("{}: payout eye over one circuit", l.label), t)?,
             ));
         }
-        let (limits_ok, residual) = match &w.track {
+        let axes = match &w.track {
             Some(track) => {
                 files.push(ResultFile::new(
                     format!("{dir}/axes.csv"),
@@ -314,6 +340,36 @@ fn layered(
                 band_csv(m, w, &passed),
             ));
         }
+        self.axes.push(axes);
+        Ok(())
+    }
+}
+
+/// A multi-layer job: each layer's outputs in `layer-NN/` (made as the
+/// layers were planned), the program's axes over time in `axes.csv`.
+fn layered(
+    job: &WindJob,
+    wound: &WoundProgram,
+    program: Option<(&Assembled, Vec<u8>)>,
+    each: LayerFiles,
+) -> Result<RunOutput, RunError> {
+    let (Some(m), Some(jm), Some((p, text))) = (&wound.machine, &job.machine, program) else {
+        return Ok(RunOutput::default());
+    };
+    let mut files = each.files;
+    let mut per_layer = Vec::with_capacity(wound.layers.len());
+    for (i, ((l, b), &(limits_ok, residual))) in wound
+        .layers
+        .iter()
+        .zip(&wound.blocks)
+        .zip(&each.axes)
+        .enumerate()
+    {
+        let Some(w) = l.wound() else {
+            per_layer
+                .push(json!({ "layer": i + 1, "kind": l.kind, "blocks": 1, "time_s": b.times[0] }));
+            continue;
+        };
         per_layer.push(json!({
             "layer": i + 1,
             "kind": l.kind,

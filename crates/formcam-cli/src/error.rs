@@ -13,6 +13,9 @@ pub enum CliError {
     /// The run of a job failed.
     #[error(transparent)]
     Run(#[from] RunError),
+    /// A result folder cannot be shown (`formcam view`).
+    #[error(transparent)]
+    View(#[from] formcam_view::ViewError),
     /// An input file (a correction job, scenario or report) could not be read.
     #[error("{}: cannot read: {source}", path.display())]
     Read {

@@ -7,6 +7,7 @@ mod error;
 mod machine;
 mod output;
 mod progress;
+mod view;
 mod wind;
 
 use std::path::PathBuf;
@@ -92,6 +93,18 @@ enum Command {
     Machine {
         #[command(subcommand)]
         what: MachineCommand,
+    },
+    /// Shows a winding result in the browser: serves the page, the result's
+    /// files and its timeline on 127.0.0.1 and prints the address first.
+    View {
+        /// The result folder (the output of `formcam wind`).
+        folder: PathBuf,
+        /// The port on 127.0.0.1 (0: any free one).
+        #[arg(long, default_value_t = 0)]
+        port: u16,
+        /// The machine file, instead of the one the result's summary names.
+        #[arg(long)]
+        machine: Option<PathBuf>,
     },
     /// Runs every bundled example job and writes its outputs (the main job).
     Demo {
@@ -221,6 +234,11 @@ fn main() -> ExitCode {
         },
         Command::Dress { job, output } => dress::run(&job, &output).map(|s| println!("{s}")),
         Command::Demo { examples, output } => wind::run_demo(&examples, &output),
+        Command::View {
+            folder,
+            port,
+            machine,
+        } => view::run(&folder, port, machine),
     };
     finish(result)
 }

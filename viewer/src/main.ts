@@ -82,7 +82,6 @@ async function main(): Promise<void> {
   let playing = false;
   let speed = 1;
   let frames = 0;
-  let drawn: (() => void)[] = [];
 
   const show = (s: Sample, t: number) => {
     shown = s;
@@ -108,7 +107,8 @@ async function main(): Promise<void> {
     const s = await api.json<Sample>(`/api/sample?t=${tc}`);
     scene.clearTrail();
     show(s, tc);
-    await new Promise<void>((res) => drawn.push(res));
+    // Drawn now, not at the next animation frame (which a hidden page never gets).
+    scene.render();
   };
   const blockStart = (b: number) => blocks.starts[Math.min(Math.max(b, 0), blocks.starts.length - 1)] ?? 0;
 
@@ -163,16 +163,13 @@ async function main(): Promise<void> {
     }
     scene.render();
     frames++;
-    const done = drawn;
-    drawn = [];
-    for (const d of done) d();
     requestAnimationFrame(frame);
   };
 
   show(tl.samples[0], 0);
   scene.look('front');
+  scene.render();
   requestAnimationFrame(frame);
-  await new Promise<void>((res) => drawn.push(res));
 
   window.formcam = {
     ready,

@@ -56,7 +56,9 @@ export class AxesPlot {
 
   /** Moves the marker to `t` s. */
   at(t: number): void {
+    // Redrawn only when the marker moves by a pixel: playing stays cheap.
+    const moved = Math.round(this.plot.valToPos(t, 'x')) !== Math.round(this.plot.valToPos(this.time, 'x'));
     this.time = t;
-    this.plot.redraw(false, false);
+    if (moved) this.plot.redraw(false, false);
   }
 }

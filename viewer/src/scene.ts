@@ -22,7 +22,7 @@ export class Scene {
     mandrel: MandrelScene | null,
     private readonly payoutIndex: number,
   ) {
-    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
     host.appendChild(this.renderer.domElement);
     this.scene.background = new THREE.Color('#dfe4ea');
@@ -135,7 +135,7 @@ export class Scene {
       return;
     }
     this.controls.target.copy(target);
-    this.camera.position.copy(target).addScaledVector(dir.normalize(), size * 0.9);
+    this.camera.position.copy(target).addScaledVector(dir.normalize(), size * 1.5);
     this.camera.lookAt(target);
   }
 

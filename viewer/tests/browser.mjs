@@ -27,6 +27,12 @@ const browser = await chromium.launch({
   ],
 });
 const errors = [];
+// A page that stops answering fails the test instead of holding it.
+const watchdog = setTimeout(() => {
+  errors.push('driver: no answer from the page within 300 s');
+  writeFileSync(out, JSON.stringify({ errors }, null, 1));
+  process.exit(1);
+}, 300_000);
 try {
   const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
   page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
@@ -91,5 +97,6 @@ try {
   errors.push(`driver: ${e}`);
   writeFileSync(out, JSON.stringify({ errors }, null, 1));
 } finally {
+  clearTimeout(watchdog);
   await browser.close();
 }

@@ -20,7 +20,8 @@ pub struct Timeline {
     starts: Vec<f64>,
     /// Per block: end time, s.
     ends: Vec<f64>,
-    /// Per block: the axes at its end (rad, mm; the machine's order).
+    /// Per block: the axes at its end as the program writes them (degrees,
+    /// mm; the machine's order).
     targets: Vec<Vec<f64>>,
     /// Per block: its line in the program (1-based; 0 when unknown).
     lines: Vec<usize>,
@@ -97,17 +98,7 @@ impl Timeline {
             });
         }
         let (starts, ends) = block_times(&program);
-        let targets = program
-            .blocks
-            .iter()
-            .map(|b| {
-                b.target
-                    .iter()
-                    .zip(&machine.axes)
-                    .map(|(v, a)| if a.is_rotary() { v.to_radians() } else { *v })
-                    .collect()
-            })
-            .collect();
+        let targets = program.blocks.iter().map(|b| b.target.clone()).collect();
         let mut lines = block_lines(text, &specs, dialect);
         if lines.len() != program.blocks.len() {
             lines = vec![0; program.blocks.len()];
@@ -175,17 +166,23 @@ impl Timeline {
         } else {
             1.0
         };
-        let q: Vec<f64> = from.iter().zip(to).map(|(a, b)| a + (b - a) * f).collect();
+        // Exactly the block's ends at f = 0 and f = 1.
+        let nc: Vec<f64> = from
+            .iter()
+            .zip(to)
+            .map(|(a, b)| a * (1.0 - f) + b * f)
+            .collect();
+        let q: Vec<f64> = nc
+            .iter()
+            .zip(&self.machine.axes)
+            .map(|(v, a)| if a.is_rotary() { v.to_radians() } else { *v })
+            .collect();
         let poses = self.machine.poses(&q);
         Sample {
             t,
             block,
             line: self.lines[block],
-            axes: q
-                .iter()
-                .zip(&self.machine.axes)
-                .map(|(v, a)| if a.is_rotary() { v.to_degrees() } else { *v })
-                .collect(),
+            axes: nc,
             poses: poses.iter().map(pose).collect(),
             points: self
                 .machine
@@ -372,10 +369,10 @@ mod tests {
         p.blocks.push(Block::rapid(vec![0.0, 0.0, 100.0, 0.0]));
         for i in 1..40 {
             let v = f64::from(i);
-            // Far enough round for the writers to wrap or re-zero the spindle.
+            // Past a turn: the modulo dialects write the spindle within one.
             p.blocks.push(
                 Block::linear(
-                    vec![v * 2000.0, v, 100.0 + v, v / 10.0],
+                    vec![v * 100.0, v, 100.0 + v, v / 10.0],
                     Feed::InverseTime(0.5),
                 )
                 .with_comment(format!("block X{i}")),

@@ -127,8 +127,8 @@ export class Scene {
       const mb = new THREE.Box3().setFromObject(mandrel);
       target = mb.getCenter(new THREE.Vector3());
       // The mandrel's axis: its link's z.
+      // From the mandrel's far end (+z), away from the spindle's drive.
       dir = new THREE.Vector3(0, 0, 1).applyQuaternion(mandrel.getWorldQuaternion(new THREE.Quaternion()));
-      dir.negate();
       this.controls.target.copy(target);
       this.camera.position.copy(target).addScaledVector(dir.normalize(), mb.getSize(new THREE.Vector3()).length() * 2.2);
       this.camera.lookAt(target);

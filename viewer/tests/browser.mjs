@@ -27,14 +27,16 @@ const browser = await chromium.launch({
   ],
 });
 const errors = [];
+let step = 'launch';
 // A page that stops answering fails the test instead of holding it.
 const watchdog = setTimeout(() => {
-  errors.push('driver: no answer from the page within 300 s');
+  errors.push(`driver: no answer from the page within 300 s (at: ${step})`);
   writeFileSync(out, JSON.stringify({ errors }, null, 1));
   process.exit(1);
 }, 300_000);
 try {
   const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  page.setDefaultTimeout(120_000);
   page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
   page.on('pageerror', (e) => errors.push(`page: ${e}`));
   page.on('requestfailed', (r) => errors.push(`request failed: ${r.url()}`));
@@ -42,6 +44,7 @@ try {
   page.on('request', (r) => { if (!r.url().startsWith(url)) errors.push(`outside request: ${r.url()}`); });
 
   const opened = Date.now();
+  step = 'open';
   await page.goto(url);
   await page.evaluate(() => window.formcam.ready);
   const tti_s = (Date.now() - opened) / 1000;
@@ -66,8 +69,10 @@ try {
   });
 
   const duration_s = await page.evaluate(() => window.formcam.duration_s);
+  step = 'pixels';
   const before = await pixels();
   await page.screenshot({ path: join(shots, 'front-start.png') });
+  step = 'seeks';
   const states = [];
   for (const f of [0.1, 0.37, 0.62, 0.9]) {
     await page.evaluate((t) => window.formcam.seek(t), f * duration_s);
@@ -75,11 +80,13 @@ try {
   }
   const after = await pixels();
   await page.screenshot({ path: join(shots, 'front-seek.png') });
+  step = 'views';
   for (const view of ['top', 'axis']) {
     await page.click(`#views button[data-view="${view}"]`);
     await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
     await page.screenshot({ path: join(shots, `${view}.png`) });
   }
+  step = 'play';
   const speed = Number(speedArg ?? 10);
   const fps = await page.evaluate(async (s) => {
     const f = window.formcam;

@@ -16,6 +16,9 @@ pub enum CliError {
     /// `formcam check` could not read its program or machine.
     #[error(transparent)]
     Sim(#[from] formcam_sim::SimError),
+    /// A result folder cannot be shown (`formcam view`).
+    #[error(transparent)]
+    View(#[from] formcam_view::ViewError),
     /// An input file (a correction job, scenario or report) could not be read.
     #[error("{}: cannot read: {source}", path.display())]
     Read {

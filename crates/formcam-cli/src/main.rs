@@ -8,6 +8,7 @@ mod error;
 mod machine;
 mod output;
 mod progress;
+mod view;
 mod wind;
 
 use std::path::PathBuf;
@@ -116,6 +117,18 @@ enum Command {
         /// Write the report (JSON: every violation) to this file.
         #[arg(short, long)]
         output: Option<PathBuf>,
+    },
+    /// Shows a winding result in the browser: serves the page, the result's
+    /// files and its timeline on 127.0.0.1 and prints the address first.
+    View {
+        /// The result folder (the output of `formcam wind`).
+        folder: PathBuf,
+        /// The port on 127.0.0.1 (0: any free one).
+        #[arg(long, default_value_t = 0)]
+        port: u16,
+        /// The machine file, instead of the one the result's summary names.
+        #[arg(long)]
+        machine: Option<PathBuf>,
     },
     /// Runs every bundled example job and writes its outputs (the main job).
     Demo {
@@ -255,6 +268,11 @@ fn main() -> ExitCode {
             Ok(false) => return ExitCode::from(3),
             Err(e) => Err(e),
         },
+        Command::View {
+            folder,
+            port,
+            machine,
+        } => view::run(&folder, port, machine),
     };
     finish(result)
 }

@@ -1,0 +1,124 @@
+//! The view's error: one line naming the file and the field.
+
+use std::io;
+use std::path::PathBuf;
+
+use formcam_files::ReadError;
+use formcam_machine::MachineError;
+use formcam_nc::NcError;
+
+/// Why a result folder cannot be shown.
+#[derive(Debug, thiserror::Error)]
+pub enum ViewError {
+    /// The page was not built when formcam was compiled.
+    #[error(
+        "the viewer page is not built into this formcam: run `npm ci && npm run build` in viewer/, then build formcam again"
+    )]
+    PageNotBuilt,
+    /// The result folder is missing or no folder.
+    #[error("{}: not a result folder (no such folder)", path.display())]
+    NoFolder {
+        /// The folder given.
+        path: PathBuf,
+    },
+    /// A file of the result could not be read.
+    #[error("{}: cannot read: {source}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The reason.
+        source: ReadError,
+    },
+    /// `summary.json` is no JSON object.
+    #[error("{}: not a JSON object: {reason}", path.display())]
+    Summary {
+        /// The summary file.
+        path: PathBuf,
+        /// What the JSON reader said.
+        reason: String,
+    },
+    /// A field the view needs is missing from `summary.json`.
+    #[error("{}: no field `{field}` ({what})", path.display())]
+    SummaryField {
+        /// The summary file.
+        path: PathBuf,
+        /// The field.
+        field: &'static str,
+        /// What the view needs it for, or what to do.
+        what: &'static str,
+    },
+    /// `summary.json` names a shipped machine that does not exist.
+    #[error("{}: `machine_shipped` = {name}: no shipped machine of that name", path.display())]
+    UnknownShipped {
+        /// The summary file.
+        path: PathBuf,
+        /// The name, quoted.
+        name: String,
+    },
+    /// The machine file named by the result could not be found.
+    #[error(
+        "{}: machine file {} not found (it is named relative to the job {}); give it with --machine",
+        summary.display(),
+        machine.display(),
+        job.display()
+    )]
+    MachineNotFound {
+        /// The summary file.
+        summary: PathBuf,
+        /// The machine file as resolved.
+        machine: PathBuf,
+        /// The job the summary names.
+        job: PathBuf,
+    },
+    /// The machine file is no valid machine.
+    #[error("{}: {source}", path.display())]
+    Machine {
+        /// The machine file (or shipped name).
+        path: PathBuf,
+        /// What is wrong.
+        source: MachineError,
+    },
+    /// The program's extension names no dialect formcam reads.
+    #[error(
+        "{}: `program_file` = {name}: the extension names no dialect (allowed: cls, mpf, spf, nc, ngc, gcode)",
+        path.display()
+    )]
+    ProgramDialect {
+        /// The summary file.
+        path: PathBuf,
+        /// The program file's name, quoted.
+        name: String,
+    },
+    /// The program could not be read back.
+    #[error("{}: {source}", path.display())]
+    Program {
+        /// The program file.
+        path: PathBuf,
+        /// What the reader said (with the line).
+        source: NcError,
+    },
+    /// A program without motion blocks.
+    #[error("{}: no motion blocks", path.display())]
+    EmptyProgram {
+        /// The program file.
+        path: PathBuf,
+    },
+    /// `path.csv` lacks a column or holds a bad number.
+    #[error("{}:{line}: {problem}", path.display())]
+    PathTable {
+        /// The path table.
+        path: PathBuf,
+        /// The line (1-based; 1 for the header).
+        line: usize,
+        /// What is wrong.
+        problem: String,
+    },
+    /// The server could not listen.
+    #[error("cannot listen on 127.0.0.1:{port}: {source}")]
+    Bind {
+        /// The port asked for.
+        port: u16,
+        /// The reason.
+        source: io::Error,
+    },
+}

@@ -1,0 +1,172 @@
+//! A winding result folder: its summary, the machine it names, the program
+//! and the path table, read once when the view starts.
+
+use std::path::{Path, PathBuf};
+
+use formcam_machine::Machine;
+use formcam_nc::Dialect;
+use serde_json::{Map, Value};
+
+use crate::ViewError;
+
+/// What the view reads of a result folder.
+#[derive(Debug, Clone)]
+pub struct RunFolder {
+    /// The folder.
+    pub root: PathBuf,
+    /// `summary.json`, as written.
+    pub summary: Map<String, Value>,
+    /// The machine the program runs on.
+    pub machine: Machine,
+    /// The program file (`program.<ext>`), its text and dialect.
+    pub program: Option<ProgramFile>,
+    /// The path table (`path.csv`, or the first layer's), when written.
+    pub path_table: Option<(PathBuf, String)>,
+}
+
+/// A program file of the result.
+#[derive(Debug, Clone)]
+pub struct ProgramFile {
+    /// Where it is.
+    pub path: PathBuf,
+    /// Its text.
+    pub text: String,
+    /// The dialect its extension names.
+    pub dialect: Dialect,
+}
+
+impl RunFolder {
+    /// Reads the result folder `root`: `summary.json`, the machine (from
+    /// `machine`, else the shipped machine or the machine file the summary
+    /// names, relative to its job), `program_file` and the path table.
+    ///
+    /// # Errors
+    ///
+    /// [`ViewError`] naming the file and the field.
+    pub fn open(root: &Path, machine: Option<&Path>) -> Result<Self, ViewError> {
+        if !root.is_dir() {
+            return Err(ViewError::NoFolder {
+                path: root.to_path_buf(),
+            });
+        }
+        let summary_path = root.join("summary.json");
+        let summary = read_summary(&summary_path)?;
+        let machine = match machine {
+            Some(path) => load_machine(path)?,
+            None => summary_machine(&summary_path, &summary)?,
+        };
+        let program = match summary.get("program_file").and_then(Value::as_str) {
+            Some(name) => Some(read_program(root, &summary_path, name)?),
+            None => None,
+        };
+        Ok(Self {
+            root: root.to_path_buf(),
+            summary,
+            machine,
+            program,
+            path_table: read_path_table(root)?,
+        })
+    }
+}
+
+fn read_text(path: &Path) -> Result<String, ViewError> {
+    formcam_files::read_text(path).map_err(|source| ViewError::Read {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+fn read_summary(path: &Path) -> Result<Map<String, Value>, ViewError> {
+    let text = read_text(path)?;
+    match serde_json::from_str::<Value>(&text) {
+        Ok(Value::Object(m)) => Ok(m),
+        Ok(_) => Err(ViewError::Summary {
+            path: path.to_path_buf(),
+            reason: "the top level is no object".into(),
+        }),
+        Err(e) => Err(ViewError::Summary {
+            path: path.to_path_buf(),
+            reason: e.to_string(),
+        }),
+    }
+}
+
+/// A machine file (URDF or TOML by its extension).
+pub fn load_machine(path: &Path) -> Result<Machine, ViewError> {
+    let text = read_text(path)?;
+    Machine::from_file_text(path, &text).map_err(|source| ViewError::Machine {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// The machine the summary names: `machine_shipped`, or `machine_file`
+/// relative to the folder of `job` (as the run was given it).
+fn summary_machine(path: &Path, summary: &Map<String, Value>) -> Result<Machine, ViewError> {
+    if let Some(name) = summary.get("machine_shipped").and_then(Value::as_str) {
+        let shipped =
+            formcam_machine::shipped::shipped(name).ok_or_else(|| ViewError::UnknownShipped {
+                path: path.to_path_buf(),
+                name: formcam_files::quote(name).to_string(),
+            })?;
+        return Machine::from_file_text(Path::new(name), shipped.text).map_err(|source| {
+            ViewError::Machine {
+                path: PathBuf::from(name),
+                source,
+            }
+        });
+    }
+    let file =
+        summary
+            .get("machine_file")
+            .and_then(Value::as_str)
+            .ok_or(ViewError::SummaryField {
+                path: path.to_path_buf(),
+                field: "machine_file",
+                what: "the machine the program runs on; give it with --machine",
+            })?;
+    let job = PathBuf::from(summary.get("job").and_then(Value::as_str).unwrap_or(""));
+    let base = job.parent().unwrap_or(Path::new(""));
+    let machine = base.join(file);
+    if !machine.is_file() {
+        return Err(ViewError::MachineNotFound {
+            summary: path.to_path_buf(),
+            machine,
+            job,
+        });
+    }
+    load_machine(&machine)
+}
+
+fn read_program(root: &Path, summary: &Path, name: &str) -> Result<ProgramFile, ViewError> {
+    let path = root.join(name);
+    let dialect = Path::new(name)
+        .extension()
+        .and_then(|e| e.to_str())
+        .and_then(Dialect::from_extension)
+        .filter(|_| !name.contains(['/', '\\']))
+        .ok_or_else(|| ViewError::ProgramDialect {
+            path: summary.to_path_buf(),
+            name: formcam_files::quote(name).to_string(),
+        })?;
+    let text = read_text(&path)?;
+    Ok(ProgramFile {
+        path,
+        text,
+        dialect,
+    })
+}
+
+/// `path.csv`, or that of the first layer (`layer-01/path.csv`).
+fn read_path_table(root: &Path) -> Result<Option<(PathBuf, String)>, ViewError> {
+    for path in [
+        root.join("path.csv"),
+        root.join("layer-01").join("path.csv"),
+    ] {
+        if path.is_file() {
+            let text = read_text(&path)?;
+            return Ok(Some((path, text)));
+        }
+    }
+    Ok(None)
+}

@@ -1,0 +1,350 @@
+//! The server on a port the system chooses, asked with raw HTTP requests:
+//! the JSON the page draws agrees with the machine's forward kinematics at
+//! the program's own block times, the result's files come back byte for
+//! byte, and every request outside the rules is refused.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::io::{Read, Write};
+use std::net::TcpStream;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use formcam_machine::Machine;
+use formcam_nc::{Block, Dialect, Feed, Program, write};
+use formcam_view::{Page, ViewOptions, ViewServer, axis_specs};
+use serde_json::Value;
+
+/// Block times of the program, s.
+const TIMES: [f64; 4] = [0.5, 1.25, 0.75, 2.0];
+
+fn machine() -> Machine {
+    let text = formcam_machine::shipped::shipped("winder-4axis")
+        .unwrap()
+        .text;
+    Machine::from_toml(text).unwrap()
+}
+
+/// Block ends (A deg, X, Y mm, B deg) of the test program.
+fn targets() -> Vec<[f64; 4]> {
+    vec![
+        [0.0, 0.0, 250.0, 0.0],
+        [90.0, 100.0, 240.0, 10.0],
+        [400.0, 250.0, 200.0, -30.0],
+        [720.0, 300.0, 210.0, 45.0],
+        [800.0, 20.0, 300.0, 0.0],
+    ]
+}
+
+/// A result folder: a summary naming the shipped machine and the program,
+/// the program (840D, inverse time) and a path table.
+fn folder(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let m = machine();
+    let mut p = Program::new("VIEW", axis_specs(&m));
+    let t = targets();
+    p.blocks.push(Block::rapid(t[0].to_vec()));
+    for (k, b) in t[1..].iter().enumerate() {
+        p.blocks
+            .push(Block::linear(b.to_vec(), Feed::InverseTime(TIMES[k])));
+    }
+    let mut text = String::new();
+    write(&p, Dialect::Sinumerik840d, &mut text).unwrap();
+    std::fs::write(dir.join("program.mpf"), text).unwrap();
+    std::fs::write(
+        dir.join("summary.json"),
+        r#"{"job": "vessel.toml", "machine_shipped": "winder-4axis", "program_file": "program.mpf"}"#,
+    )
+    .unwrap();
+    let mut path = String::from("s,z,r,v\n");
+    for i in 0..=100 {
+        let z = f64::from(i) * 3.0;
+        path.push_str(&format!(
+            "{i},{z},{},{}\n",
+            50.0 + z / 10.0,
+            f64::from(i) * 0.05
+        ));
+    }
+    std::fs::write(dir.join("path.csv"), path).unwrap();
+    dir
+}
+
+/// A server for `dir` answering on a background thread.
+fn start(dir: &Path) -> Probe {
+    serve(ViewServer::bind(dir, &ViewOptions::default(), Page::none()).unwrap())
+}
+
+fn serve(server: ViewServer) -> Probe {
+    let probe = Probe {
+        addr: server.addr(),
+        url: server.url(),
+    };
+    let _ = server.spawn();
+    probe
+}
+
+/// Where a server listens.
+struct Probe {
+    addr: std::net::SocketAddr,
+    url: String,
+}
+
+impl Probe {
+    fn json(&self, url: &str) -> Value {
+        get_json(self, url)
+    }
+}
+
+/// Sends `request` as it is and returns the status and the body.
+fn raw(server: &Probe, request: &[u8]) -> (u16, Vec<u8>) {
+    let mut s = TcpStream::connect(server.addr).unwrap();
+    s.set_read_timeout(Some(Duration::from_secs(10))).unwrap();
+    s.write_all(request).unwrap();
+    let mut out = Vec::new();
+    let _ = s.read_to_end(&mut out);
+    let text = String::from_utf8_lossy(&out);
+    let status = text
+        .split_whitespace()
+        .nth(1)
+        .and_then(|c| c.parse().ok())
+        .unwrap_or(0);
+    let body = match out.windows(4).position(|w| w == b"\r\n\r\n") {
+        Some(i) => out[i + 4..].to_vec(),
+        None => Vec::new(),
+    };
+    (status, body)
+}
+
+/// A GET with its response's head.
+fn get_with_head(server: &Probe, url: &str) -> (u16, String, Vec<u8>) {
+    let mut s = TcpStream::connect(server.addr).unwrap();
+    s.write_all(format!("GET {url} HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").as_bytes())
+        .unwrap();
+    let mut out = Vec::new();
+    let _ = s.read_to_end(&mut out);
+    let i = out.windows(4).position(|w| w == b"\r\n\r\n").unwrap();
+    let head = String::from_utf8_lossy(&out[..i]).into_owned();
+    let status = head.split_whitespace().nth(1).unwrap().parse().unwrap();
+    (status, head, out[i + 4..].to_vec())
+}
+
+fn get(server: &Probe, url: &str) -> (u16, Vec<u8>) {
+    raw(
+        server,
+        format!("GET {url} HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n").as_bytes(),
+    )
+}
+
+fn get_json(server: &Probe, url: &str) -> Value {
+    let (status, body) = get(server, url);
+    assert_eq!(status, 200, "{url}: {}", String::from_utf8_lossy(&body));
+    serde_json::from_slice(&body).unwrap()
+}
+
+fn nums(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+/// The axes at `t` by the program's block times, in rad and mm.
+fn axes_at(t: f64) -> Vec<f64> {
+    let ends: Vec<f64> = TIMES
+        .iter()
+        .scan(0.0, |s, d| {
+            *s += d;
+            Some(*s)
+        })
+        .collect();
+    let k = ends.iter().position(|&e| e >= t).unwrap_or(ends.len() - 1);
+    let start = if k == 0 { 0.0 } else { ends[k - 1] };
+    let f = (t - start) / TIMES[k];
+    let (a, b) = (targets()[k], targets()[k + 1]);
+    (0..4)
+        .map(|i| {
+            let v = a[i] + (b[i] - a[i]) * f;
+            if i == 0 || i == 3 { v.to_radians() } else { v }
+        })
+        .collect()
+}
+
+#[test]
+fn it_listens_on_the_loopback_only_at_the_port_chosen() {
+    let server = start(&folder("loopback"));
+    assert!(server.addr.ip().is_loopback());
+    assert_ne!(server.addr.port(), 0);
+    assert_eq!(
+        server.url,
+        format!("http://127.0.0.1:{}/", server.addr.port())
+    );
+    assert_eq!(get(&server, "/api/result").0, 200);
+}
+
+#[test]
+fn the_timeline_is_the_program_at_its_block_times_through_forward_kinematics() {
+    let dir = folder("timeline");
+    let server = start(&dir);
+    let tl = server.json("/api/timeline?samples=9");
+    let duration: f64 = TIMES.iter().sum();
+    assert!((tl["duration_s"].as_f64().unwrap() - duration).abs() < 1e-12);
+    assert_eq!(tl["blocks"], 5);
+    assert_eq!(tl["axes"][0]["name"], "A");
+    assert_eq!(tl["axes"][0]["unit"], "deg");
+    let samples = tl["samples"].as_array().unwrap();
+    assert_eq!(samples.len(), 9);
+    let m = machine();
+    let payout = tl["payout"].as_u64().unwrap() as usize;
+    for (i, s) in samples.iter().enumerate() {
+        let t = duration * i as f64 / 8.0;
+        assert!((s["t"].as_f64().unwrap() - t).abs() < 1e-12);
+        let q = axes_at(t);
+        let shown = nums(&s["axes"]);
+        for k in 0..4 {
+            let want = if k == 0 || k == 3 {
+                q[k].to_degrees()
+            } else {
+                q[k]
+            };
+            assert!(
+                (shown[k] - want).abs() < 1e-9,
+                "t {t} axis {k}: {} {want}",
+                shown[k]
+            );
+        }
+        let p = m.key_points(&q)[payout];
+        let sent = nums(&s["points"][payout]);
+        assert!(
+            (sent[0] - p.x).abs() < 1e-9
+                && (sent[1] - p.y).abs() < 1e-9
+                && (sent[2] - p.z).abs() < 1e-9
+        );
+        // Every link's pose as FK gives it.
+        let poses = m.poses(&q);
+        for (l, pose) in poses.iter().enumerate() {
+            let sent = nums(&s["poses"][l]);
+            let v = pose.translation.vector;
+            let r = pose.rotation.quaternion();
+            for (a, b) in sent.iter().zip([v.x, v.y, v.z, r.i, r.j, r.k, r.w]) {
+                assert!((a - b).abs() < 1e-9, "link {l}");
+            }
+        }
+    }
+    // An exact sample at a block's end: the block's target, its line.
+    let s = server.json("/api/sample?t=1.75");
+    assert_eq!(s["block"], 2);
+    assert_eq!(nums(&s["axes"]), targets()[2].to_vec());
+    let program = std::fs::read_to_string(dir.join("program.mpf")).unwrap();
+    let line = program
+        .lines()
+        .nth(s["line"].as_u64().unwrap() as usize - 1)
+        .unwrap();
+    assert!(line.contains("X250") && line.contains("Y200"), "{line}");
+    let blocks = server.json("/api/blocks");
+    assert_eq!(nums(&blocks["ends"]).len(), 5);
+    assert!((nums(&blocks["starts"])[3] - 1.75).abs() < 1e-12);
+}
+
+#[test]
+fn the_scene_and_the_results_files_are_served() {
+    let dir = folder("files");
+    let server = start(&dir);
+    let machine = get_json(&server, "/api/machine");
+    assert_eq!(machine["name"], "4-axis winder");
+    assert_eq!(machine["links"][0]["solids"][0]["shape"], "box");
+    let mandrel = get_json(&server, "/api/mandrel");
+    assert_eq!(mandrel["meridian"].as_array().unwrap().len(), 101);
+    assert_eq!(
+        get_json(&server, "/api/result")["program_file"],
+        "program.mpf"
+    );
+    let (status, body) = get(&server, "/files/program.mpf");
+    assert_eq!(status, 200);
+    assert_eq!(body, std::fs::read(dir.join("program.mpf")).unwrap());
+    let (status, body) = get(&server, "/api/program");
+    assert_eq!(
+        (status, body),
+        (200, std::fs::read(dir.join("program.mpf")).unwrap())
+    );
+    assert_eq!(get(&server, "/files/nothing.csv").0, 404);
+    assert_eq!(get(&server, "/api/nothing").0, 404);
+    // No page built into this server: nothing at `/`.
+    assert_eq!(get(&server, "/").0, 404);
+}
+
+#[test]
+fn a_page_is_served_at_the_root() {
+    let dir = folder("page");
+    let page = Page::from_files(vec![("index.html".into(), b"<html>x</html>".to_vec())]);
+    let server = serve(ViewServer::bind(&dir, &ViewOptions::default(), page).unwrap());
+    let (status, head, body) = get_with_head(&server, "/");
+    assert_eq!((status, body), (200, b"<html>x</html>".to_vec()));
+    assert!(head.contains("Content-Type: text/html"), "{head}");
+    assert_eq!(get(&server, "/favicon.ico").0, 200);
+    assert_eq!(get(&server, "/index.html").0, 200);
+}
+
+#[test]
+fn traversal_other_methods_and_oversized_requests_are_refused() {
+    let dir = folder("refuse");
+    let outside = dir.parent().unwrap().join("refuse-secret.txt");
+    std::fs::write(&outside, "secret").unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(&outside, dir.join("link.txt")).unwrap();
+    let server = start(&dir);
+    for url in [
+        "/files/../refuse-secret.txt",
+        "/files/%2e%2e/refuse-secret.txt",
+        "/files/%2E%2E%2Frefuse-secret.txt",
+        "/files/..%5crefuse-secret.txt",
+        "/files//etc/passwd",
+        "/files/.formcam-run",
+        "/files/a%00b",
+        "/../../etc/passwd",
+    ] {
+        let (status, body) = get(&server, url);
+        assert_eq!(status, 400, "{url}: {}", String::from_utf8_lossy(&body));
+    }
+    // A symlink out of the folder, an absolute path: nothing there.
+    #[cfg(unix)]
+    assert_eq!(get(&server, "/files/link.txt").0, 404);
+    assert_eq!(get(&server, "/etc/passwd").0, 404);
+    for method in ["POST", "PUT", "DELETE", "HEAD", "OPTIONS"] {
+        let (status, _) = raw(
+            &server,
+            format!("{method} /api/result HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")
+                .as_bytes(),
+        );
+        assert_eq!(status, 405, "{method}");
+    }
+    let long = format!("/files/{}", "a".repeat(4096));
+    assert_eq!(get(&server, &long).0, 414);
+    let (status, _) = raw(
+        &server,
+        b"GET /api/result HTTP/1.1\r\nHost: x\r\nContent-Length: 5\r\nConnection: close\r\n\r\nhello",
+    );
+    assert_eq!(status, 413);
+    let big = format!(
+        "GET /api/result HTTP/1.1\r\nHost: x\r\nX-Big: {}\r\nConnection: close\r\n\r\n",
+        "b".repeat(20_000)
+    );
+    let (status, _) = raw(&server, big.as_bytes());
+    assert!(status == 431 || status == 400, "{status}");
+    assert_eq!(get(&server, "/api/timeline?samples=x").0, 400);
+    assert_eq!(get(&server, "/api/sample?t=nan").0, 400);
+}
+
+#[test]
+fn a_folder_without_a_summary_names_the_file() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("empty-result");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let e = ViewServer::bind(&dir, &ViewOptions::default(), Page::none())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("summary.json"), "{e}");
+}

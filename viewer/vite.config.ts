@@ -1,0 +1,12 @@
+import { defineConfig } from 'vite';
+
+// The page is served by `formcam view` from the files embedded in the
+// binary: everything local, nothing fetched from elsewhere.
+export default defineConfig({
+  base: '/',
+  build: {
+    outDir: 'dist',
+    emptyOutDir: true,
+    chunkSizeWarningLimit: 2048,
+  },
+});

@@ -202,7 +202,7 @@ fn errors_name_the_field_and_in_multi_layer_jobs_the_layer() {
     let e = error(&skip);
     assert!(
         e.starts_with("layer[2].mandrel_rotation_deg: missing")
-            && e.contains("(required when kind = skip): a number"),
+            && e.contains("(required when kind = skip): a finite number"),
         "{e}"
     );
 }

@@ -25,6 +25,10 @@ struct Columns {
     x: Option<usize>,
     /// For each of the machine's axes, the index of its column.
     axes: Vec<usize>,
+    /// How many cells the header has.
+    count: usize,
+    /// The header's names, comma-separated and quoted short, for messages.
+    names: String,
 }
 
 /// The rows of an axes CSV's text for `machine`; errors name the line (1-based,
@@ -78,7 +82,12 @@ fn locate_columns(machine: &Machine, line: usize, header: &str) -> Result<Column
             })
         })
         .collect::<Result<_, _>>()?;
-    Ok(Columns { x: find("x"), axes })
+    Ok(Columns {
+        x: find("x"),
+        axes,
+        count: names.len(),
+        names: excerpt(&names.join(", ")),
+    })
 }
 
 /// One data row (on line `line`): `x` when the header has it, the axes in
@@ -92,14 +101,14 @@ fn read_row(
     let cells: Vec<&str> = row.split(',').map(str::trim).collect();
     let x = columns
         .x
-        .map(|c| cell_value(&cells, c, "x", line))
+        .map(|c| cell_value(&cells, columns, c, "x", line))
         .transpose()?;
     let q = machine
         .axes
         .iter()
         .zip(&columns.axes)
         .map(|(a, &c)| {
-            let v = cell_value(&cells, c, &a.name, line)?;
+            let v = cell_value(&cells, columns, c, &a.name, line)?;
             // Finite degrees give finite radians (|π/180| < 1).
             Ok(if a.is_rotary() { v.to_radians() } else { v })
         })
@@ -108,12 +117,20 @@ fn read_row(
 }
 
 /// The finite number in cell `index` of a row, the column named `name`.
-fn cell_value(cells: &[&str], index: usize, name: &str, line: usize) -> Result<f64, AxesCsvError> {
+fn cell_value(
+    cells: &[&str],
+    columns: &Columns,
+    index: usize,
+    name: &str,
+    line: usize,
+) -> Result<f64, AxesCsvError> {
     let cell = cells.get(index).ok_or_else(|| AxesCsvError::MissingCell {
         line,
         column: excerpt(name),
         position: index + 1,
         cells: cells.len(),
+        expected: columns.count,
+        header: columns.names.clone(),
     })?;
     cell.parse::<f64>()
         .ok()
@@ -234,7 +251,12 @@ mod tests {
     fn a_short_row_names_the_missing_column() {
         assert_eq!(
             error("A,X,Y,B\n0,0,0\n"),
-            "2: column \"B\" (cell 4): missing, the row has 3 cells"
+            "2: column \"B\" (cell 4) is missing: the row has 3 cells, the header 4 (A, X, Y, B)"
+        );
+        assert_eq!(
+            error("x, A,X,Y,B,extra\n0,0,0,0,0,0\n1\n"),
+            "3: column \"A\" (cell 2) is missing: the row has 1 cell, \
+             the header 6 (x, A, X, Y, B, extra)"
         );
     }
 

@@ -61,20 +61,28 @@ pub enum MachineError {
 }
 
 /// urdf-rs's reason for refusing a document, shared so that the error stays
-/// `Clone`; it prints on one line.
+/// `Clone`; it prints on one line. Where the elements are not properly
+/// nested, it says where instead (urdf-rs does not).
 #[derive(Debug, Clone)]
-pub struct UrdfFault(Arc<urdf_rs::UrdfError>);
+pub struct UrdfFault(Arc<urdf_rs::UrdfError>, Option<String>);
 
 impl UrdfFault {
     /// urdf-rs's error.
     pub fn source_error(&self) -> &urdf_rs::UrdfError {
         &self.0
     }
+
+    /// The fault with `place` (the line of a misnested element and what is
+    /// open there) said instead of urdf-rs's reason, when there is one.
+    pub(crate) fn misnested(mut self, place: Option<String>) -> Self {
+        self.1 = place;
+        self
+    }
 }
 
 impl From<urdf_rs::UrdfError> for UrdfFault {
     fn from(e: urdf_rs::UrdfError) -> Self {
-        Self(Arc::new(e))
+        Self(Arc::new(e), None)
     }
 }
 
@@ -89,6 +97,9 @@ impl fmt::Display for UrdfFault {
     /// urdf-rs's reason on one line; an empty or non-XML document says what
     /// a URDF document is, and serde's `custom: ` prefix is dropped.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some(place) = &self.1 {
+            return write!(f, "{place}");
+        }
         let text = self.0.to_string();
         if text.trim() == "No elements found" {
             return write!(
@@ -154,7 +165,11 @@ pub enum AxesCsvError {
         axes: String,
     },
     /// A row too short to reach a column.
-    #[error("{line}: column \"{column}\" (cell {position}): missing, the row has {cells} cells")]
+    #[error(
+        "{line}: column \"{column}\" (cell {position}) is missing: the row has {}, \
+         the header {expected} ({header})",
+        cell_count(*cells)
+    )]
     MissingCell {
         /// The row's line.
         line: usize,
@@ -164,6 +179,10 @@ pub enum AxesCsvError {
         position: usize,
         /// How many cells the row has.
         cells: usize,
+        /// How many cells the header has.
+        expected: usize,
+        /// The header's column names, comma-separated (quoted short).
+        header: String,
     },
     /// A cell that is no finite number.
     #[error("{line}: column \"{column}\": not a finite number: \"{cell}\"")]
@@ -186,6 +205,15 @@ impl AxesCsvError {
             | Self::MissingCell { line, .. }
             | Self::NotANumber { line, .. } => Some(*line),
         }
+    }
+}
+
+/// `1 cell`, `3 cells`.
+fn cell_count(n: usize) -> String {
+    if n == 1 {
+        "1 cell".to_string()
+    } else {
+        format!("{n} cells")
     }
 }
 

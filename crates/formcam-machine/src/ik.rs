@@ -232,14 +232,16 @@ fn orientation_rows(m: &Machine) -> usize {
             Some(_) => m.axes.len().saturating_sub(3).min(2),
             None => 0,
         },
-        MachineKind::Placement => 2 + usize::from(roles.roller_axis.is_some()),
+        // Pressing along `-m` (two rows, and a third that tells it from
+        // pressing along `+m`), the roller across the path.
+        MachineKind::Placement => 3 + usize::from(roles.roller_axis.is_some()),
     }
 }
 
-/// At most six residuals, without allocating.
+/// At most seven residuals, without allocating.
 #[derive(Debug, Clone, Copy)]
 struct Residuals {
-    v: [f64; 6],
+    v: [f64; 7],
     n: usize,
 }
 
@@ -310,6 +312,7 @@ impl<'a> Equations<'a> {
                 0.0,
                 0.0,
                 0.0,
+                0.0,
             ],
             n: 3,
         };
@@ -329,6 +332,9 @@ impl<'a> Equations<'a> {
                 let n = press.unwrap_or_else(Vector3::z);
                 r.push(s * n.dot(&band));
                 r.push(s * n.dot(&side));
+                // Zero where the head presses along `-m`, 2 where along `+m`
+                // (which the two rows above allow too).
+                r.push(s * (1.0 + n.dot(&normal)));
                 if let Some(a) = roller {
                     r.push(s * a.dot(&band));
                 }
@@ -387,6 +393,7 @@ impl<'a> Equations<'a> {
                         let d_side = d_normal.cross(&band) + normal.cross(&d_band);
                         put(dn.dot(&band) + n.dot(&d_band));
                         put(dn.dot(&side) + n.dot(&d_side));
+                        put(dn.dot(&normal) + n.dot(&d_normal));
                         if let Some(a) = roller {
                             let da = ddir(&a, moves_head);
                             put(da.dot(&band) + a.dot(&d_band));
@@ -776,6 +783,7 @@ fn point_residuals(m: &Machine, rows: usize, frames: &[Frame], t: &Target) -> (f
                 .map_or_else(Vector3::z, |a| head.rotation * a.into_inner());
             put(n.dot(&band));
             put(n.dot(&normal.cross(&band)));
+            put(1.0 + n.dot(&normal));
             if let Some(a) = roller {
                 put(a.dot(&band));
             }
@@ -1013,6 +1021,44 @@ mod tests {
                     proptest::prop_assert!((g - w).abs() < tol, "{}: {got:?} vs {q:?}", s.name);
                 }
             }
+        }
+    }
+
+    /// A placement head pressing along `+m` (outward) meets the two rows of
+    /// pressing across the band, but is no solution: its residual is 2
+    /// (pressing along `-m`: 0).
+    #[test]
+    fn a_head_pressing_outward_is_no_solution() {
+        let m = crate::shipped::shipped("placement-arm")
+            .unwrap()
+            .machine()
+            .unwrap();
+        let q = m.home();
+        let poses = m.poses(&q);
+        let head = poses[m.points[m.roles.payout].link];
+        let mandrel = poses[m.roles.mandrel];
+        let to_mandrel = |v: Vector3<f64>| mandrel.rotation.inverse() * (head.rotation * v);
+        let press = to_mandrel(m.roles.head_normal.unwrap().into_inner());
+        let roller = to_mandrel(m.roles.roller_axis.unwrap().into_inner());
+        let point = mandrel.inverse_transform_point(&(head * m.points[m.roles.payout].position));
+        let chain = Chain::new(&m, &[m.points[m.roles.payout].link, m.roles.mandrel]);
+        let mut frames = Vec::new();
+        chain.frames_into(&q, &mut frames);
+        for (sign, want) in [(-1.0, 0.0), (1.0, 2.0)] {
+            let t = Target {
+                x: 0.0,
+                point,
+                path_point: point,
+                band: Unit::new_normalize(roller.cross(&press)),
+                normal: Unit::new_normalize(sign * press),
+                free_length: 0.0,
+                clearance_margin: 0.0,
+            };
+            let (pos, ori) = point_residuals(&m, orientation_rows(&m), &frames, &t);
+            assert!(
+                pos < 1e-9 && (ori - want).abs() < 1e-9,
+                "{sign}: {pos} {ori}"
+            );
         }
     }
 

@@ -59,7 +59,8 @@ const MM: f64 = 1000.0;
 /// link that is the child of two joints, and a capsule visual. The links
 /// themselves are checked by [`Machine::from_file`].
 pub fn links_from_urdf(text: &str) -> Result<Vec<LinkSpec>, MachineError> {
-    let robot = urdf_rs::read_from_string(text).map_err(UrdfFault::from)?;
+    let robot = urdf_rs::read_from_string(text)
+        .map_err(|e| UrdfFault::from(e).misnested(misnested(text)))?;
     let link_names: HashSet<&str> = robot.links.iter().map(|l| l.name.as_str()).collect();
     let materials: HashMap<&str, &urdf_rs::Color> = robot
         .materials
@@ -142,6 +143,50 @@ pub fn links_from_urdf(text: &str) -> Result<Vec<LinkSpec>, MachineError> {
             Ok(spec)
         })
         .collect()
+}
+
+/// Where the elements of a URDF document are not properly nested (an end
+/// tag that is not the innermost open element's: an element closed in the
+/// wrong place, or one left open): the line of that end tag and the element
+/// still open, with the line it opened on. `None` when the elements nest (or
+/// the XML fails first on something else, which urdf-rs then reports).
+///
+/// XML readers say only that the elements are not properly nested; the
+/// document is read again here, a line at a time, to find where.
+fn misnested(text: &str) -> Option<String> {
+    let mut parser = rustyxml::Parser::new();
+    let mut open: Vec<(String, usize)> = Vec::new();
+    for (k, line) in text.split_inclusive('\n').enumerate() {
+        let lineno = k + 1;
+        parser.feed_str(line);
+        for event in &mut parser {
+            match event {
+                Ok(rustyxml::Event::ElementStart(tag)) => open.push((tag.name, lineno)),
+                Ok(rustyxml::Event::ElementEnd(tag)) => {
+                    let message = match open.pop() {
+                        // The root closed: what follows is not read.
+                        Some((name, _)) if name == tag.name && open.is_empty() => return None,
+                        Some((name, _)) if name == tag.name => continue,
+                        Some((name, at)) => format!(
+                            "line {lineno}: </{}> where <{}> of line {at} is still open \
+                             (elements not properly nested)",
+                            formcam_files::quote(&tag.name),
+                            formcam_files::quote(&name),
+                        ),
+                        None => format!(
+                            "line {lineno}: </{}> after the root element is closed \
+                             (elements not properly nested)",
+                            formcam_files::quote(&tag.name),
+                        ),
+                    };
+                    return Some(message);
+                }
+                Ok(_) => {}
+                Err(_) => return None,
+            }
+        }
+    }
+    None
 }
 
 /// The machine-file joint type of a URDF joint.

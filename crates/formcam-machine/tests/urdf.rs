@@ -397,3 +397,49 @@ fn formcam_roles_errors_name_the_line_in_the_element() {
     let e = Machine::from_urdf_document(&text).unwrap_err().to_string();
     assert!(e.contains("payout"), "{e}");
 }
+
+/// An element closed in the wrong place (or left open) names the line of the
+/// end tag and the element still open, with its line, as the other URDF
+/// errors name their line.
+#[test]
+fn misnested_elements_name_the_line() {
+    let text = shipped_urdf();
+    // A link left open: found where its parent closes.
+    let open = text.replacen("<link name=\"mandrel\"/>", "<link name=\"mandrel\">", 1);
+    let line = |needle: &str| {
+        text.lines()
+            .position(|l| l.contains(needle))
+            .map(|k| k + 1)
+            .unwrap()
+    };
+    let e = Machine::from_urdf_document(&open).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        format!(
+            "URDF: line {}: </robot> where <link> of line {} is still open \
+             (elements not properly nested)",
+            line("</robot>"),
+            line("<link name=\"mandrel\"/>")
+        )
+    );
+    // An element closed inside another: `</visual>` inside `<geometry>`.
+    let inside = text.replacen(
+        "      </geometry>\n      <material name=\"blue\">",
+        "      </visual>\n      <material name=\"blue\">",
+        1,
+    );
+    assert_ne!(inside, text);
+    let e = Machine::from_urdf_document(&inside)
+        .unwrap_err()
+        .to_string();
+    let at = inside
+        .lines()
+        .position(|l| l.contains("<material name=\"blue\">"))
+        .unwrap();
+    assert!(
+        e.starts_with(&format!(
+            "URDF: line {at}: </visual> where <geometry> of line "
+        )),
+        "{e}"
+    );
+}

@@ -376,13 +376,13 @@ pub enum TemplateProblem {
         /// What the TOML reader said (or what it expected).
         message: String,
     },
-    /// Too many decimals.
-    #[error("{field} = {decimals}: at most 9 decimals")]
+    /// Decimals outside 0 to 9.
+    #[error("{field} = {decimals}: allowed 0 to 9 (decimals)")]
     Decimals {
         /// The field (`decimals_mm`, `decimals_deg`).
         field: &'static str,
         /// The decimals given.
-        decimals: u32,
+        decimals: i64,
     },
     /// A `{` without its `}`.
     #[error("field `{field}`: `{{` without a closing `}}`")]

@@ -153,6 +153,23 @@ fn number_end(b: &[u8], mut i: usize) -> Option<usize> {
     (any && i > start).then_some(i)
 }
 
+/// Whether the number ending at `b[ne]` goes on with an exponent (`e5`,
+/// `E-3`): NC words take plain decimals, and `X1e400` is neither `X1` and an
+/// `E` word nor a number to round to infinity.
+fn exponent_follows(b: &[u8], ne: usize) -> bool {
+    let digit = |k: usize| b.get(k).is_some_and(u8::is_ascii_digit);
+    matches!(b.get(ne), Some(b'e' | b'E'))
+        && (digit(ne + 1) || (matches!(b.get(ne + 1), Some(b'+' | b'-')) && digit(ne + 2)))
+}
+
+/// The end of the token at `b[i..]`: the next blank, `;` or the line's end.
+fn token_end(b: &[u8], i: usize) -> usize {
+    b[i..]
+        .iter()
+        .position(|c| matches!(c, b' ' | b'\t' | b';'))
+        .map_or(b.len(), |k| i + k)
+}
+
 fn skip_blanks(b: &[u8], mut i: usize) -> usize {
     while i < b.len() && b[i] == b' ' {
         i += 1;
@@ -229,6 +246,29 @@ pub(crate) fn lex(
 impl Lexer<'_> {
     fn err(&self, what: impl std::fmt::Display) -> NcError {
         line_error(self.lineno, self.text, what)
+    }
+
+    /// The number `text[j..ne]` of the word or assignment starting at `i`:
+    /// plain decimals only (no exponent), finite.
+    fn number(&self, i: usize, j: usize, ne: usize) -> Result<f64, NcError> {
+        let word = || quote(&self.text[i..token_end(self.b, i)]);
+        if exponent_follows(self.b, ne) {
+            return Err(self.err(format!(
+                "`{}`: a number with an exponent; NC words take plain decimals (like 12.5)",
+                word()
+            )));
+        }
+        let num = &self.text[j..ne];
+        let value: f64 = num
+            .parse()
+            .map_err(|_| self.err(format!("unreadable `{}`", quote(num))))?;
+        if !value.is_finite() {
+            return Err(self.err(format!(
+                "`{}`: the number is too large (not finite)",
+                word()
+            )));
+        }
+        Ok(value)
     }
 
     fn blank(&mut self, i: usize) -> usize {
@@ -328,12 +368,10 @@ impl Lexer<'_> {
                 break;
             }
         }
-        let value = number_end(b, j)
-            .and_then(|ne| self.text[j..ne].parse::<f64>().ok().map(|v| (v, ne)))
-            .filter(|(v, _)| v.is_finite());
-        let Some((value, mut end)) = value else {
+        let Some(mut end) = number_end(b, j) else {
             return Err(self.err(format!("`{}=` is not followed by a number", quote(name))));
         };
+        let value = self.number(i, j, end)?;
         if direction.is_some() {
             if b.get(end) != Some(&b')') {
                 return Err(self.err(format!(
@@ -362,9 +400,7 @@ impl Lexer<'_> {
             if b.get(j) == Some(&b'=') {
                 let j = skip_blanks(b, j + 1);
                 if let Some(ne) = number_end(b, j) {
-                    let v: f64 = self.text[j..ne]
-                        .parse()
-                        .map_err(|_| self.err("an unreadable `CR=` value"))?;
+                    let v = self.number(i, j, ne)?;
                     self.out.cr = Some((v, self.base + i..self.base + ne));
                     self.last_was_word = true;
                     return Ok(ne);
@@ -431,12 +467,7 @@ impl Lexer<'_> {
             return Ok(j.max(i + 1));
         };
         let num = &text[j..ne];
-        let value: f64 = num
-            .parse()
-            .map_err(|_| self.err(format!("unreadable `{}`", quote(num))))?;
-        if !value.is_finite() {
-            return Err(self.err(format!("`{}` is not finite", quote(num))));
-        }
+        let value = self.number(i, j, ne)?;
         let (point, decimals) = match num.find('.') {
             Some(p) => (true, (num.len() - p - 1) as u32),
             None => (false, 0),

@@ -78,9 +78,9 @@ struct TemplateFile {
     #[serde(default)]
     rezero: Option<String>,
     #[serde(default = "default_mm")]
-    decimals_mm: u32,
+    decimals_mm: i64,
     #[serde(default = "default_deg")]
-    decimals_deg: u32,
+    decimals_deg: i64,
     #[serde(default)]
     signed: bool,
     #[serde(default = "default_true")]
@@ -98,13 +98,16 @@ struct LineNumbers {
     step: u64,
 }
 
-fn default_mm() -> u32 {
-    num::MM
+fn default_mm() -> i64 {
+    i64::from(num::MM)
 }
 
-fn default_deg() -> u32 {
-    num::DEG
+fn default_deg() -> i64 {
+    i64::from(num::DEG)
 }
+
+/// The most decimals a template may ask for.
+const MAX_DECIMALS: u32 = 9;
 
 fn default_true() -> bool {
     true
@@ -186,17 +189,14 @@ impl Template {
                 message: syntax_message(e.message(), text, at.unwrap_or(text.len())),
             })
         })?;
-        for (field, d) in [
-            ("decimals_mm", f.decimals_mm),
-            ("decimals_deg", f.decimals_deg),
-        ] {
-            if d > 9 {
-                return Err(NcError::template(TemplateProblem::Decimals {
-                    field,
-                    decimals: d,
-                }));
-            }
-        }
+        let decimals = |field, d: i64| {
+            u32::try_from(d)
+                .ok()
+                .filter(|d| *d <= MAX_DECIMALS)
+                .ok_or_else(|| NcError::template(TemplateProblem::Decimals { field, decimals: d }))
+        };
+        let decimals_mm = decimals("decimals_mm", f.decimals_mm)?;
+        let decimals_deg = decimals("decimals_deg", f.decimals_deg)?;
         let plain = |c: char| c.is_ascii_alphanumeric() || c == '_' || c == '-';
         if f.extension.is_empty() || !f.extension.chars().all(plain) {
             return Err(NcError::template(TemplateProblem::Extension {
@@ -233,8 +233,8 @@ impl Template {
                 .map(|t| parse("rezero", t, Scope::Block))
                 .transpose()?,
             extension: f.extension,
-            decimals_mm: f.decimals_mm,
-            decimals_deg: f.decimals_deg,
+            decimals_mm,
+            decimals_deg,
             signed: f.signed,
             modal_axes: f.modal_axes,
             axis_letters: f.axis_letters.unwrap_or_default(),

@@ -6,7 +6,7 @@ mod common;
 
 use formcam_nc::{
     AxisSpec, Block, Dialect, Feed, NcError, Program, Template, ToolpathOptions, read_cldata,
-    read_gcode, read_toolpath, write, write_template,
+    read_gcode, read_gcode_in, read_toolpath, write, write_template,
 };
 
 #[test]
@@ -217,4 +217,79 @@ fn a_template_extension_is_a_plain_word_and_its_line_numbers_advance() {
         "{e}"
     );
     assert!(Template::from_toml(&steps.replace("step = 0", "step = 1")).is_ok());
+}
+
+#[test]
+fn template_decimals_outside_0_to_9_name_the_field_the_range_and_the_value() {
+    for (field, value) in [
+        ("decimals_mm", "-1"),
+        ("decimals_deg", "-4"),
+        ("decimals_mm", "10"),
+        ("decimals_deg", "4294967296"),
+    ] {
+        let text = format!("extension = \"h\"\nblock = \"{{axes}}\"\n{field} = {value}\n");
+        let e = Template::from_toml(&text).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            format!("template: {field} = {value}: allowed 0 to 9 (decimals)"),
+            "{text}"
+        );
+    }
+    for d in [0, 9] {
+        let text = format!("extension = \"h\"\nblock = \"{{axes}}\"\ndecimals_mm = {d}\n");
+        assert!(Template::from_toml(&text).is_ok(), "{d}");
+    }
+}
+
+/// NC words take plain decimals: a number with an exponent, or one too large
+/// to be finite, is refused with its line and the word quoted, by every
+/// G-code dialect's reader and by the milling (correction) reader.
+#[test]
+fn exponents_and_non_finite_numbers_are_refused_in_every_gcode_reader() {
+    let axes = [AxisSpec::linear("X"), AxisSpec::rotary("A")];
+    let huge = format!("X1{}", "0".repeat(400));
+    let words = [
+        ("X1e400", "exponent"),
+        ("X1E5", "exponent"),
+        ("X2.5e-3", "exponent"),
+        ("X-.5E+2", "exponent"),
+        (huge.as_str(), "not finite"),
+    ];
+    let dialects = [
+        Dialect::Sinumerik840d,
+        Dialect::Iso,
+        Dialect::LinuxCnc,
+        Dialect::MarlinXab,
+    ];
+    for (word, why) in words {
+        let text = format!("G0 X0 A0\nG1 {word} F100\n");
+        let quoted = format!("`{}", &word[..word.len().min(20)]);
+        for d in dialects {
+            let e = read_gcode_in(&text, &axes, d).unwrap_err();
+            let m = e.to_string();
+            assert!(m.contains(why) && m.contains(&quoted), "{d}: {m}");
+            assert_eq!(line_of(e), 2, "{d}: {m}");
+        }
+        let milled = format!("G0 X0 Y0 Z0\nG1 {word} F100\n");
+        let e = read_toolpath(&milled, &ToolpathOptions::default()).unwrap_err();
+        let m = e.to_string();
+        assert!(m.contains(why) && m.contains(&quoted), "toolpath: {m}");
+        assert_eq!(line_of(e), 2, "toolpath: {m}");
+    }
+    // Sinumerik's `NAME=value` and `CR=` take plain decimals too.
+    for line in ["G1 A=1e2 F100", "G1 A=ACP(1e2) F100"] {
+        let text = format!("N10 G0 X0 A0\nN20 {line}\n");
+        let e = read_gcode_in(&text, &axes, Dialect::Sinumerik840d).unwrap_err();
+        assert!(e.to_string().contains("exponent"), "{e}");
+        assert_eq!(line_of(e), 2);
+    }
+    let opts = ToolpathOptions {
+        dialect: Dialect::Sinumerik840d,
+        ..ToolpathOptions::default()
+    };
+    let e = read_toolpath("G0 X0 Y0 Z0\nG2 X1 Y1 CR=1e1 F100\n", &opts).unwrap_err();
+    assert!(e.to_string().contains("exponent"), "{e}");
+    assert_eq!(line_of(e), 2);
+    // Plain decimals read as before.
+    read_gcode_in("G0 X0 A0\nG1 X-.5 A12. F100\n", &axes, Dialect::Iso).unwrap();
 }

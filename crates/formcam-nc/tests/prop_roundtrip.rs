@@ -21,9 +21,9 @@
 //! formcam's programs do: Marlin has no inverse time and converts a timed
 //! block's time into a feed over the block's travel, which the first block
 //! (from an unknown position) and a block that moves nothing do not have;
-//! such a block keeps the feed in force, and with none in force yet it is
-//! written without `F`, which the reader refuses (a feed move without a
-//! feed).
+//! such a block keeps the feed in force, or with none in force yet takes the
+//! feed ahead (`tests/roundtrip.rs` reads such programs back), which this
+//! property would have to predict.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
 

@@ -211,3 +211,55 @@ fn long_cldata_records_continue_within_72_columns() {
     assert!(text.lines().any(|l| l.ends_with(",$")));
     check(&p, Dialect::Cldata);
 }
+
+/// Marlin has no inverse time: a timed block's time becomes a feed over its
+/// travel, which a timed first block (from an unknown position) and a timed
+/// block that moves nothing do not have. Written before any feed, such a
+/// block takes the first feed of a later block (Marlin itself would move at
+/// its default feed, `DEFAULT_FEEDRATE_MM_M`, not the program's), or
+/// Marlin's default 4000 mm/min when no later block has one, and the program
+/// reads back with Marlin's reader.
+#[test]
+fn marlin_timed_blocks_before_any_feed_read_back() {
+    use formcam_nc::{Block, read_gcode_in};
+    let axes = vec![
+        AxisSpec::linear("X"),
+        AxisSpec::rotary("A"),
+        AxisSpec::rotary("B"),
+    ];
+    let timed = |q: [f64; 3], t: f64| Block::linear(q.to_vec(), Feed::InverseTime(t));
+    let mut p = Program::new("MARLIN", axes.clone());
+    // A timed first block, one that moves nothing, then 30 mm in 2 s: 900 mm/min.
+    p.blocks.push(timed([10.0, 0.0, 0.0], 1.0));
+    p.blocks.push(timed([10.0, 0.0, 0.0], 0.5));
+    p.blocks.push(timed([40.0, 0.0, 0.0], 2.0));
+    let mut text = String::new();
+    write(&p, Dialect::MarlinXab, &mut text).unwrap();
+    let q =
+        read_gcode_in(&text, &axes, Dialect::MarlinXab).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    let feeds: Vec<Feed> = q.blocks.iter().map(|b| b.feed).collect();
+    assert_eq!(feeds, [Feed::PerMinute(900.0); 3], "{text}");
+    // The feed is written once, on the first block.
+    assert_eq!(text.matches(" F").count(), 1, "{text}");
+    // No later block has a feed: Marlin's own default.
+    let mut p = Program::new("STILL", axes.clone());
+    p.blocks.push(timed([0.0, 0.0, 0.0], 1.0));
+    p.blocks.push(timed([0.0, 0.0, 0.0], 1.0));
+    let mut text = String::new();
+    write(&p, Dialect::MarlinXab, &mut text).unwrap();
+    let q =
+        read_gcode_in(&text, &axes, Dialect::MarlinXab).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    let feeds: Vec<Feed> = q.blocks.iter().map(|b| b.feed).collect();
+    assert_eq!(feeds, [Feed::PerMinute(4000.0); 2], "{text}");
+    // A feed in force is kept: a block that moves nothing after a feed
+    // writes none.
+    let mut p = Program::new("KEPT", axes.clone());
+    p.blocks.push(Block::rapid(vec![0.0; 3]));
+    p.blocks.push(timed([60.0, 0.0, 0.0], 6.0));
+    p.blocks.push(timed([60.0, 0.0, 0.0], 1.0));
+    let mut text = String::new();
+    write(&p, Dialect::MarlinXab, &mut text).unwrap();
+    let q = read_gcode_in(&text, &axes, Dialect::MarlinXab).unwrap();
+    assert_eq!(q.blocks[2].feed, Feed::PerMinute(600.0), "{text}");
+    assert_eq!(text.matches(" F").count(), 1, "{text}");
+}

@@ -381,6 +381,27 @@ fn block_feed(st: &Style, b: &Block, prev: Option<&[f64]>) -> Option<(f64, u32, 
     }
 }
 
+/// Marlin's own feed before any `F` (`DEFAULT_FEEDRATE_MM_M`, 4000 mm/min
+/// in Marlin 2): the feed a program of timed blocks that move nothing is
+/// written with, so that its first feed move has an `F`.
+const MARLIN_DEFAULT_FEED: f64 = 4000.0;
+
+/// The feed written on a feed move that has none of its own (in the
+/// converting dialects: a timed first block, from an unknown position, or a
+/// timed block that moves nothing) while no feed is in force: the first feed
+/// of a later block, so that the block moves at the speed the program goes
+/// on with and that block needs no `F` of its own; else Marlin's default.
+fn feed_ahead(p: &Program, st: &Style, from: usize) -> (f64, u32) {
+    (from + 1..p.blocks.len())
+        .find_map(
+            |k| match block_feed(st, &p.blocks[k], Some(&p.blocks[k - 1].target)) {
+                Some((f, dec, false)) => Some((f, dec)),
+                _ => None,
+            },
+        )
+        .unwrap_or((MARLIN_DEFAULT_FEED, FEED))
+}
+
 /// The state the writer is in before block `start` (`first_n`: the first
 /// block's N number). After any block every axis's last printed value is
 /// that block's rounded value; `G93` is on when the last linear block was
@@ -413,6 +434,13 @@ fn state_before<'a>(p: &'a Program, st: &Style, start: usize, first_n: u64) -> S
         if let Some((f, dec, false)) = block_feed(st, b, before) {
             last_feed = num::scaled(f, dec).map(|s| (s, dec));
             break;
+        }
+        if last_feed.is_none() {
+            // A feed move without a feed of its own: if no block before it
+            // has one either, it was written with the feed ahead (the same
+            // for every such block: the first feed at or after `start`).
+            let (f, dec) = feed_ahead(p, st, i);
+            last_feed = num::scaled(f, dec).map(|s| (s, dec));
         }
     }
     let off = if st.modulo == ModWrite::Rezero {
@@ -456,12 +484,19 @@ fn write_blocks<'a>(
         ln,
     } = state;
     let last = &mut last[..n];
-    for b in &p.blocks[range] {
+    let first = range.start;
+    for (i, b) in p.blocks[range].iter().enumerate() {
         if let (true, ModWrite::Rezero, Some(before)) = (b.rezero, st.modulo, *prev) {
             rezero_line(out, st, mod_words, before, off);
         }
         ln.push(out);
-        let feed = block_feed(st, b, *prev);
+        let feed = match block_feed(st, b, *prev) {
+            None if b.kind == Motion::Linear && last_feed.is_none() => {
+                let (f, dec) = feed_ahead(p, st, first + i);
+                Some((f, dec, false))
+            }
+            feed => feed,
+        };
         match b.kind {
             Motion::Rapid => out.s(st.motion[0]),
             Motion::Linear => {
@@ -663,6 +698,37 @@ mod tests {
         write_in(&p, &MARLIN, &mut o, 1).unwrap();
         let one = o.finish();
         for threads in [2, 5, 16] {
+            let mut o = Out::new(Vec::new());
+            write_in(&p, &MARLIN, &mut o, threads).unwrap();
+            assert!(o.finish() == one, "marlin in {threads} runs");
+        }
+    }
+
+    /// Marlin: timed blocks without a travel before any feed take the feed
+    /// ahead, the same whichever run writes them.
+    #[test]
+    fn marlin_feed_ahead_is_the_same_for_any_number_of_runs() {
+        let mut p = Program::new(
+            "AHEAD",
+            vec![
+                AxisSpec::linear("X"),
+                AxisSpec::rotary("A"),
+                AxisSpec::rotary("B"),
+            ],
+        );
+        for k in 0..40 {
+            let x = if k < 25 { 5.0 } else { 5.0 + k as f64 };
+            p.blocks
+                .push(Block::linear(vec![x, 0.0, 0.0], Feed::InverseTime(0.5)));
+        }
+        let one = {
+            let mut o = Out::new(Vec::new());
+            write_in(&p, &MARLIN, &mut o, 1).unwrap();
+            o.finish()
+        };
+        let text = String::from_utf8(one.clone()).unwrap();
+        assert!(text.contains("G1 X5 A0 B0 F3000\n"), "{text}");
+        for threads in [2, 3, 7, 40] {
             let mut o = Out::new(Vec::new());
             write_in(&p, &MARLIN, &mut o, threads).unwrap();
             assert!(o.finish() == one, "marlin in {threads} runs");

@@ -118,7 +118,9 @@ fn a_bad_axes_file_names_the_file_line_column_and_cell() {
     );
     let err = fk("short.csv", "A,X,Y,B\n0,0,0\n");
     assert!(
-        err.ends_with(":2: column \"B\" (cell 4): missing, the row has 3 cells"),
+        err.ends_with(
+            ":2: column \"B\" (cell 4) is missing: the row has 3 cells, the header 4 (A, X, Y, B)"
+        ),
         "{err}"
     );
     let err = fk("empty.csv", "\n# nothing\n");

@@ -16,25 +16,10 @@ use std::process::{Command, Stdio};
 use common::{examples, scratch};
 use formcam_nc::{AxisSpec, Dialect, read_gcode_in};
 
-/// Whether `rs274` runs here; fails when it must.
-fn rs274_present() -> bool {
-    let found = Command::new("rs274")
-        .arg("-h")
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .status()
-        .is_ok();
-    if !found {
-        assert!(
-            std::env::var("FORMCAM_REQUIRE_RS274").as_deref() != Ok("1"),
-            "rs274 (Debian package linuxcnc-uspace) is not on the PATH and \
-             FORMCAM_REQUIRE_RS274=1"
-        );
-        eprintln!("skipped: rs274 (linuxcnc-uspace) is not installed");
-    }
-    found
-}
+#[path = "../../formcam-nc/tests/support/rs274.rs"]
+mod rs274;
+
+use rs274::rs274_present;
 
 /// One canonical call of `rs274 -g`.
 #[derive(Debug)]

@@ -495,9 +495,12 @@ pub enum WindFileError {
     },
 }
 
-/// serde_json's message on one line.
+/// serde_json's message on one line, without the ` at line L column C` it
+/// ends with (the position is given once, before it).
 fn one_line(e: &serde_json::Error) -> String {
-    e.to_string().replace('\n', " ")
+    let text = e.to_string();
+    let at = format!(" at line {} column {}", e.line(), e.column());
+    text.strip_suffix(&at).unwrap_or(&text).replace('\n', " ")
 }
 
 /// `; unknown members given: a, b` when there are any.

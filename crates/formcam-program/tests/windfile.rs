@@ -322,4 +322,7 @@ fn refusals_are_typed_with_the_member_and_the_numbers() {
     let source = std::error::Error::source(&e).map(ToString::to_string);
     assert!(source.is_some_and(|s| s.contains("EOF")), "{e}");
     assert!(e.to_string().starts_with("1:"), "{e}");
+    // The position once, before serde_json's reason, not again after it.
+    let e = WindJob::from_wind("{\n  \"layers\": [,]\n}", EYE_CLEARANCE_MM, &[]).unwrap_err();
+    assert_eq!(e.to_string(), "2:14: expected value", "{e}");
 }

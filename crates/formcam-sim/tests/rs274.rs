@@ -21,24 +21,10 @@ use formcam_machine::shipped::shipped;
 use formcam_nc::{Block, Dialect, Feed, Motion, Program, write};
 use formcam_sim::{FeedRule, Timeline, program_axes, read_program};
 
-fn rs274_present() -> bool {
-    let found = Command::new("rs274")
-        .arg("-h")
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .status()
-        .is_ok();
-    if !found {
-        assert!(
-            std::env::var("FORMCAM_REQUIRE_RS274").as_deref() != Ok("1"),
-            "rs274 (Debian package linuxcnc-uspace) is not on the PATH and \
-             FORMCAM_REQUIRE_RS274=1"
-        );
-        eprintln!("skipped: rs274 (linuxcnc-uspace) is not installed");
-    }
-    found
-}
+#[path = "../../formcam-nc/tests/support/rs274.rs"]
+mod rs274;
+
+use rs274::rs274_present;
 
 /// A canonical move: traverse or feed, its end (x y z a b c u v w), the
 /// feed mode (inverse time) and rate in force.

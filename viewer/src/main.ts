@@ -208,8 +208,11 @@ async function main(): Promise<void> {
       }
       if (t >= duration) setPlaying(false);
     }
-    scene.render();
-    frames++;
+    // Drawn only when something changed: a paused page costs nothing.
+    if (playing || scene.dirty) {
+      scene.render();
+      frames++;
+    }
     requestAnimationFrame(frame);
   };
 

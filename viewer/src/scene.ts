@@ -29,6 +29,8 @@ export class Scene {
   private eye: THREE.Line | null = null;
   /** Keep the payout point at the centre of the view. */
   follow = false;
+  /** Whether anything changed since the last frame drawn. */
+  dirty = true;
 
   constructor(
     private readonly host: HTMLElement,
@@ -43,6 +45,7 @@ export class Scene {
     this.camera = new THREE.PerspectiveCamera(40, 1, 5, 100000);
     this.camera.up.set(0, 0, 1);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.addEventListener('change', () => { this.dirty = true; });
     this.scene.add(new THREE.HemisphereLight('#ffffff', '#7a8088', 1.6));
     const sun = new THREE.DirectionalLight('#ffffff', 1.6);
     sun.position.set(2000, -3000, 4000);
@@ -170,6 +173,7 @@ export class Scene {
 
   /** Shows or hides the band and the eye trajectory (tests compare the pixels). */
   overlays(show: { band?: boolean; eye?: boolean }): void {
+    this.dirty = true;
     if (this.band && show.band !== undefined) this.band.visible = show.band;
     if (this.eye && show.eye !== undefined) this.eye.visible = show.eye;
   }
@@ -202,6 +206,7 @@ export class Scene {
 
   /** Places every link and the payout point as `s` says. */
   show(s: Sample): void {
+    this.dirty = true;
     s.poses.forEach((p, i) => {
       const g = this.links[i];
       if (!g) return;
@@ -226,6 +231,7 @@ export class Scene {
   }
 
   render(): void {
+    this.dirty = false;
     if (this.follow) {
       // Camera and target move with the payout point: it stays centred.
       const d = this.payout.position.clone().sub(this.controls.target);
@@ -242,6 +248,7 @@ export class Scene {
    * the mandrel and the band (the base's bed only where nothing else is).
    */
   look(view: View): void {
+    this.dirty = true;
     const box = this.frame();
     const centre = box.getCenter(new THREE.Vector3());
     const mandrel = this.scene.getObjectByName('mandrel');
@@ -300,6 +307,7 @@ export class Scene {
 
   /** Turns following the payout point on or off (centring it now). */
   setFollow(on: boolean): void {
+    this.dirty = true;
     this.follow = on;
     if (on) {
       const d = this.payout.position.clone().sub(this.controls.target);
@@ -327,6 +335,7 @@ export class Scene {
     this.renderer.setSize(w, h, false);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
+    this.dirty = true;
   }
 }
 

@@ -290,7 +290,21 @@ fn the_browser_shows_the_payout_point_formcam_machine_fk_gives() {
             .collect();
         assert!(p[0].abs() < 1.0 && p[1].abs() < 1.0, "{f}");
     }
-    assert_ne!(f["camera"][0], f["camera"][1], "{f}");
+    // The camera moved by as much as the payout point, which moved.
+    let v3 = |v: &serde_json::Value| -> Vec<f64> {
+        v.as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    let (c0, c1) = (v3(&f["camera"][0]), v3(&f["camera"][1]));
+    let (p0, p1) = (v3(&f["payout"][0]), v3(&f["payout"][1]));
+    let moved: f64 = (0..3).map(|k| (p1[k] - p0[k]).powi(2)).sum::<f64>().sqrt();
+    assert!(moved > 1.0, "{f}");
+    for k in 0..3 {
+        assert!(((c1[k] - c0[k]) - (p1[k] - p0[k])).abs() < 1e-6, "{f}");
+    }
     // The tightened carriage: the position violation listed and marked; at
     // its first time the X readout is red.
     let v = &r["violations"];

@@ -17,7 +17,7 @@ use crate::scene::thin;
 use crate::timeline::Timeline;
 
 /// The most band points sent for drawing (over every circuit and layer).
-pub const BAND_POINTS: usize = 60_000;
+pub const BAND_POINTS: usize = 20_000;
 
 /// How far short of a point's spindle angle it counts as laid, degrees:
 /// ten written units (the program's angles are rounded to 1e-4 deg, the

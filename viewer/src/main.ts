@@ -81,13 +81,16 @@ window.formcam = {
 };
 
 async function main(): Promise<void> {
-  const [result, machine, mandrel, tl, blocks, program, violations, eye, band] = await Promise.all([
+  const [result, machine, mandrel, tl, blocks, program] = await Promise.all([
     api.json<Record<string, unknown>>('/api/result'),
     api.json<api.MachineScene>('/api/machine'),
     api.mandrel(),
     api.json<TimelineBody>(`/api/timeline?samples=${SAMPLES}`),
     api.json<Blocks>('/api/blocks'),
     api.text('/api/program'),
+  ]);
+  // The overlays after the result: no more than six requests at once.
+  const [violations, eye, band] = await Promise.all([
     api.optional<api.Violations>('/api/violations'),
     api.optional<api.EyeTrajectory>('/api/eye'),
     api.optional<api.Band>('/api/band'),

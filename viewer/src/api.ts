@@ -15,6 +15,8 @@ export interface Sample {
   poses: number[][];
   /** Every key point's world position, mm. */
   points: number[][];
+  /** Points of `/api/band` laid at this time (absent without a band). */
+  laid?: number;
 }
 
 /** `/api/timeline`. */
@@ -53,6 +55,56 @@ export interface MandrelScene {
 
 /** `/api/blocks`. */
 export interface Blocks { starts: number[]; ends: number[]; lines: number[] }
+
+/**
+ * A violation as the check reports it. Kinds the page does not know (a
+ * collision naming `links`, say) are still listed.
+ */
+export interface Violation {
+  kind: string;
+  axis?: string;
+  links?: string[];
+  block?: number;
+  line?: number;
+  time_s?: number;
+  value?: number;
+  limit?: number;
+  unit?: string;
+  count?: number;
+  worst_time_s?: number;
+  worst_value?: number;
+  /** [start, end] s of its first and worst block. */
+  spans: [number, number][];
+}
+
+/** `/api/violations`. */
+export interface Violations {
+  source: string;
+  clean: boolean;
+  violations: Violation[];
+  limits: { axis: string; unit: string; min: number | null; max: number | null }[];
+}
+
+/** `/api/eye`: the payout point's path in the world, mm. */
+export interface EyeTrajectory { points: [number, number, number][]; times: number[]; ends: number }
+
+/** `/api/band`: the band's path over the whole program, in the mandrel link's frame. */
+export interface Band {
+  link: number;
+  width_mm: number;
+  points: [number, number, number][];
+  /** Where each layer's points start. */
+  layers: number[];
+  table_points: number;
+}
+
+/** `url` as JSON, or null when the result has none (404). */
+export async function optional<T>(url: string): Promise<T | null> {
+  const r = await fetch(url);
+  if (r.status === 404) return null;
+  if (!r.ok) throw new Error(`${url}: ${r.status} ${(await r.text()).trim()}`);
+  return (await r.json()) as T;
+}
 
 async function get(url: string): Promise<Response> {
   const r = await fetch(url);

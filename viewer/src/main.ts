@@ -5,6 +5,8 @@ import './style.css';
 import * as api from './api';
 import type { Blocks, Sample, TimelineBody } from './api';
 import { Scene } from './scene';
+import type { View } from './scene';
+import { ViolationView } from './violations';
 import { ProgramView } from './program';
 import { AxesPlot } from './plot';
 
@@ -15,6 +17,24 @@ interface State {
   line: number;
   axes: Record<string, number>;
   payout: [number, number, number];
+  /** Band points drawn (laid by then), of `band_total`. */
+  band_points: number;
+  band_total: number;
+  /** Points of the eye trajectory drawn. */
+  eye_points: number;
+  /** Violations listed. */
+  violations: number;
+  /** Axes shown red (beyond a limit, or in a violation's block). */
+  red_axes: string[];
+  /** Links highlighted (a collision at the time shown). */
+  highlighted: string[];
+  /** Whether the camera follows the payout point. */
+  follow: boolean;
+  /** The camera's position and target, world mm. */
+  camera: number[];
+  target: number[];
+  /** The payout point in the picture, px from the canvas's centre. */
+  payout_px: [number, number];
 }
 
 interface FormcamApi {
@@ -26,6 +46,10 @@ interface FormcamApi {
   pause(): void;
   /** Frames drawn since the page opened (for measuring). */
   frames(): number;
+  /** Turns following the payout point on or off. */
+  follow(on: boolean): void;
+  /** Shows or hides the band and the eye trajectory, drawn at once. */
+  overlays(show: { band?: boolean; eye?: boolean }): void;
 }
 
 declare global {
@@ -52,6 +76,8 @@ window.formcam = {
   play: () => {},
   pause: () => {},
   frames: () => 0,
+  follow: () => {},
+  overlays: () => {},
 };
 
 async function main(): Promise<void> {
@@ -63,11 +89,21 @@ async function main(): Promise<void> {
     api.json<Blocks>('/api/blocks'),
     api.text('/api/program'),
   ]);
-  $('title').textContent = `formcam view: ${String(result.job ?? '')} on ${machine.name}`;
+  // The overlays after the result: no more than six requests at once.
+  const [violations, eye, band] = await Promise.all([
+    api.optional<api.Violations>('/api/violations'),
+    api.optional<api.EyeTrajectory>('/api/eye'),
+    api.optional<api.Band>('/api/band'),
+  ]);
+  const job = cleanPath(String(result.job ?? ''));
+  $('title').textContent = `formcam view: ${job.split('/').pop() ?? ''} on ${machine.name}`;
+  $('title').title = job;
   $('status').textContent = `${tl.blocks} blocks, ${tl.duration_s.toFixed(2)} s` +
     (mandrel ? `, path ${mandrel.path_points} points` : '');
 
   const scene = new Scene($('stage'), machine, mandrel, tl.payout);
+  if (eye) scene.addEye(eye);
+  if (band) scene.addBand(band);
   const readouts = readoutTable(tl);
   let plot: AxesPlot | null = null;
   try {
@@ -83,13 +119,17 @@ async function main(): Promise<void> {
   let speed = 1;
   let frames = 0;
 
+  let alarm = { axes: new Set<string>(), links: new Set<string>() };
   const show = (s: Sample, t: number) => {
     shown = s;
     time = t;
     scene.show(s);
-    readouts(s);
+    if (s.laid !== undefined) scene.showLaid(s.laid);
+    alarm = checks?.at(s, tl.axes) ?? alarm;
+    scene.highlight(alarm.links);
+    readouts(s, alarm.axes);
     programView.mark(s.line);
-    plot?.at(s.t);
+    plot?.at(s.t, s.axes);
     ($('scrub') as HTMLInputElement).value = String(Math.round((t / Math.max(duration, 1e-9)) * 100000));
     ($('block') as HTMLInputElement).value = String(s.block);
     $('clock').textContent = `${clock(t)} / -${clock(duration - t)}`;
@@ -110,6 +150,12 @@ async function main(): Promise<void> {
     // Drawn now, not at the next animation frame (which a hidden page never gets).
     scene.render();
   };
+  const checks = violations
+    ? new ViolationView($('violations'), $('marks'), violations, duration, (t) => {
+      setPlaying(false);
+      void seek(t);
+    })
+    : null;
   const blockStart = (b: number) => blocks.starts[Math.min(Math.max(b, 0), blocks.starts.length - 1)] ?? 0;
 
   const programView = new ProgramView($('program'), program, (line) => {
@@ -144,8 +190,12 @@ async function main(): Promise<void> {
   });
   $('speed').addEventListener('change', (e) => { speed = Number((e.target as HTMLSelectElement).value); });
   for (const b of document.querySelectorAll<HTMLButtonElement>('#views button')) {
-    b.addEventListener('click', () => scene.look(b.dataset.view as 'front' | 'top' | 'axis'));
+    b.addEventListener('click', () => {
+      scene.look(b.dataset.view as View);
+      ($('follow') as HTMLInputElement).checked = false;
+    });
   }
+  $('follow').addEventListener('change', (e) => scene.setFollow((e.target as HTMLInputElement).checked));
 
   let last = performance.now();
   const frame = (now: number) => {
@@ -161,8 +211,11 @@ async function main(): Promise<void> {
       }
       if (t >= duration) setPlaying(false);
     }
-    scene.render();
-    frames++;
+    // Drawn only when something changed: a paused page costs nothing.
+    if (playing || scene.dirty) {
+      scene.render();
+      frames++;
+    }
     requestAnimationFrame(frame);
   };
 
@@ -181,7 +234,23 @@ async function main(): Promise<void> {
       line: shown.line,
       axes: Object.fromEntries(tl.axes.map((a, k) => [a.name, shown.axes[k]])),
       payout: shown.points[tl.payout] as [number, number, number],
+      ...scene.counts(),
+      violations: checks?.count ?? 0,
+      red_axes: [...alarm.axes],
+      highlighted: scene.highlightedLinks(),
+      follow: scene.follow,
+      ...scene.view(),
+      payout_px: scene.payoutOffset(),
     }),
+    follow: (on: boolean) => {
+      ($('follow') as HTMLInputElement).checked = on;
+      scene.setFollow(on);
+      scene.render();
+    },
+    overlays: (show) => {
+      scene.overlays(show);
+      scene.render();
+    },
     play: (s?: number) => {
       if (s) speed = s;
       if (time >= duration) time = 0;
@@ -192,7 +261,7 @@ async function main(): Promise<void> {
   };
 }
 
-function readoutTable(tl: TimelineBody): (s: Sample) => void {
+function readoutTable(tl: TimelineBody): (s: Sample, red: Set<string>) => void {
   const table = $('readouts');
   const cells = tl.axes.map((a) => {
     const tr = document.createElement('tr');
@@ -206,7 +275,22 @@ function readoutTable(tl: TimelineBody): (s: Sample) => void {
     table.appendChild(tr);
     return v;
   });
-  return (s) => cells.forEach((c, k) => { c.textContent = s.axes[k].toFixed(3); });
+  return (s, red) => cells.forEach((c, k) => {
+    c.textContent = s.axes[k].toFixed(3);
+    c.classList.toggle('alarm', red.has(tl.axes[k].name));
+  });
+}
+
+/** A path with `.` and `dir/..` steps taken out, `/` between names. */
+function cleanPath(p: string): string {
+  const abs = p.startsWith('/');
+  const out: string[] = [];
+  for (const part of p.split(/[\\/]+/)) {
+    if (part === '' || part === '.') continue;
+    if (part === '..' && out.length > 0 && out[out.length - 1] !== '..') out.pop();
+    else if (part !== '..' || !abs) out.push(part);
+  }
+  return (abs ? '/' : '') + out.join('/');
 }
 
 function clock(t: number): string {

@@ -1,8 +1,14 @@
 // The 3-D scene: the machine's solids, the mandrel and its path, the
-// payout point, all placed by the poses the server sent.
+// payout point, the eye trajectory and the band laid, all placed by the
+// poses the server sent; the camera's views and the follow mode.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import type { MachineScene, MandrelScene, Sample, Solid } from './api';
+import type { Band, EyeTrajectory, MachineScene, MandrelScene, Sample, Solid } from './api';
+
+export type View = 'front' | 'top' | 'axis';
+
+/** The colour of a solid named in a violation. */
+const ALARM = new THREE.Color('#ff2a1a');
 
 export class Scene {
   readonly renderer: THREE.WebGLRenderer;
@@ -14,7 +20,17 @@ export class Scene {
   private readonly trail: THREE.Line;
   private readonly trailPositions: Float32Array;
   private trailCount = 0;
-  private readonly box = new THREE.Box3();
+  /** Every link's solids (for highlighting). */
+  private readonly solids: THREE.Mesh[][] = [];
+  private highlighted = new Set<number>();
+  private band: THREE.Mesh | null = null;
+  private bandTotal = 0;
+  private bandShown = 0;
+  private eye: THREE.Line | null = null;
+  /** Keep the payout point at the centre of the view. */
+  follow = false;
+  /** Whether anything changed since the last frame drawn. */
+  dirty = true;
 
   constructor(
     private readonly host: HTMLElement,
@@ -29,6 +45,7 @@ export class Scene {
     this.camera = new THREE.PerspectiveCamera(40, 1, 5, 100000);
     this.camera.up.set(0, 0, 1);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.addEventListener('change', () => { this.dirty = true; });
     this.scene.add(new THREE.HemisphereLight('#ffffff', '#7a8088', 1.6));
     const sun = new THREE.DirectionalLight('#ffffff', 1.6);
     sun.position.set(2000, -3000, 4000);
@@ -37,7 +54,9 @@ export class Scene {
     for (const link of machine.links) {
       const g = new THREE.Group();
       g.name = link.name;
-      for (const s of link.solids) g.add(solid(s));
+      const meshes = link.solids.map(solid);
+      for (const m of meshes) g.add(m);
+      this.solids.push(meshes);
       this.links.push(g);
       this.scene.add(g);
     }
@@ -84,8 +103,110 @@ export class Scene {
     }
   }
 
+  /** The payout point's path over the whole program (world frame). */
+  addEye(e: EyeTrajectory): void {
+    if (e.points.length < 2) return;
+    const geo = new THREE.BufferGeometry();
+    geo.setAttribute('position', new THREE.BufferAttribute(new Float32Array(e.points.flat()), 3));
+    this.eye = new THREE.Line(
+      geo,
+      new THREE.LineBasicMaterial({ color: '#7b3fa0', transparent: true, opacity: 0.55 }),
+    );
+    this.eye.name = 'eye-trajectory';
+    this.eye.frustumCulled = false;
+    this.scene.add(this.eye);
+  }
+
+  /**
+   * The band over the whole program as a ribbon on the mandrel (in its
+   * link's frame), of which `showLaid` draws the part laid.
+   */
+  addBand(b: Band): void {
+    const g = this.links[b.link];
+    const n = b.points.length;
+    if (!g || n < 2) return;
+    const pos = new Float32Array(6 * n);
+    const half = b.width_mm / 2;
+    const p = new THREE.Vector3();
+    const t = new THREE.Vector3();
+    const radial = new THREE.Vector3();
+    const side = new THREE.Vector3();
+    for (let i = 0; i < n; i++) {
+      const a = b.points[Math.max(i - 1, 0)];
+      const c = b.points[Math.min(i + 1, n - 1)];
+      p.set(b.points[i][0], b.points[i][1], b.points[i][2]);
+      t.set(c[0] - a[0], c[1] - a[1], c[2] - a[2]).normalize();
+      // Lifted off the surface a little, the band's half width to each side.
+      radial.set(p.x, p.y, 0).normalize();
+      side.crossVectors(radial, t).normalize().multiplyScalar(half);
+      p.addScaledVector(radial, 0.8);
+      pos.set([p.x + side.x, p.y + side.y, p.z + side.z, p.x - side.x, p.y - side.y, p.z - side.z], 6 * i);
+    }
+    const starts = new Set(b.layers);
+    const index: number[] = [];
+    for (let i = 0; i + 1 < n; i++) {
+      // No strip across a join of layers: a degenerate one keeps the stride.
+      if (starts.has(i + 1)) index.push(2 * i, 2 * i, 2 * i, 2 * i, 2 * i, 2 * i);
+      else index.push(2 * i, 2 * i + 1, 2 * i + 2, 2 * i + 1, 2 * i + 3, 2 * i + 2);
+    }
+    const geo = new THREE.BufferGeometry();
+    geo.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+    geo.setIndex(index);
+    geo.computeVertexNormals();
+    geo.setDrawRange(0, 0);
+    this.band = new THREE.Mesh(
+      geo,
+      new THREE.MeshStandardMaterial({ color: '#d9822b', side: THREE.DoubleSide, roughness: 0.8 }),
+    );
+    this.band.name = 'band';
+    this.band.frustumCulled = false;
+    this.bandTotal = n;
+    g.add(this.band);
+  }
+
+  /** Draws the first `n` band points (the band laid so far). */
+  showLaid(n: number): void {
+    if (!this.band) return;
+    this.bandShown = Math.min(Math.max(n, 0), this.bandTotal);
+    this.band.geometry.setDrawRange(0, 6 * Math.max(this.bandShown - 1, 0));
+  }
+
+  /** Shows or hides the band and the eye trajectory (tests compare the pixels). */
+  overlays(show: { band?: boolean; eye?: boolean }): void {
+    this.dirty = true;
+    if (this.band && show.band !== undefined) this.band.visible = show.band;
+    if (this.eye && show.eye !== undefined) this.eye.visible = show.eye;
+  }
+
+  /** Band points drawn, band points in all, eye trajectory points. */
+  counts(): { band_points: number; band_total: number; eye_points: number } {
+    const eye = this.eye?.geometry.getAttribute('position').count ?? 0;
+    return { band_points: this.bandShown, band_total: this.bandTotal, eye_points: eye };
+  }
+
+  /** Colours the solids of the links named (a collision), the others as they are. */
+  highlight(names: Set<string>): void {
+    const now = new Set<number>();
+    this.links.forEach((g, i) => { if (names.has(g.name)) now.add(i); });
+    if (now.size === this.highlighted.size && [...now].every((i) => this.highlighted.has(i))) return;
+    this.solids.forEach((meshes, i) => {
+      for (const m of meshes) {
+        const mat = m.material as THREE.MeshStandardMaterial;
+        mat.emissive.copy(now.has(i) ? ALARM : new THREE.Color(0, 0, 0));
+        mat.emissiveIntensity = now.has(i) ? 0.8 : 1;
+      }
+    });
+    this.highlighted = now;
+  }
+
+  /** The names of the links highlighted. */
+  highlightedLinks(): string[] {
+    return [...this.highlighted].map((i) => this.links[i].name);
+  }
+
   /** Places every link and the payout point as `s` says. */
   show(s: Sample): void {
+    this.dirty = true;
     s.poses.forEach((p, i) => {
       const g = this.links[i];
       if (!g) return;
@@ -110,33 +231,102 @@ export class Scene {
   }
 
   render(): void {
+    this.dirty = false;
+    if (this.follow) {
+      // Camera and target move with the payout point: it stays centred.
+      const d = this.payout.position.clone().sub(this.controls.target);
+      this.camera.position.add(d);
+      this.controls.target.add(d);
+    }
     this.controls.update();
     this.renderer.render(this.scene, this.camera);
   }
 
-  /** Looks at the whole machine from `view`. */
-  look(view: 'front' | 'top' | 'axis'): void {
-    this.box.setFromObject(this.scene);
-    const centre = this.box.getCenter(new THREE.Vector3());
-    const size = this.box.getSize(new THREE.Vector3()).length();
-    let dir = new THREE.Vector3(0, -1, 0.35);
-    let target = centre;
-    if (view === 'top') dir = new THREE.Vector3(0, -0.001, 1);
+  /**
+   * Looks from `view` (front, top, along the mandrel's axis) at the machine
+   * and the mandrel, framed to fill the picture: the moving links' solids,
+   * the mandrel and the band (the base's bed only where nothing else is).
+   */
+  look(view: View): void {
+    this.dirty = true;
+    const box = this.frame();
+    const centre = box.getCenter(new THREE.Vector3());
     const mandrel = this.scene.getObjectByName('mandrel');
-    if (view === 'axis' && mandrel) {
-      const mb = new THREE.Box3().setFromObject(mandrel);
-      target = mb.getCenter(new THREE.Vector3());
-      // The mandrel's axis: its link's z.
-      // From the mandrel's far end (+z), away from the spindle's drive.
+    let dir = new THREE.Vector3(0, -1, 0.35);
+    // From straight above, a hair to the front: the orbit keeps z up.
+    if (view === 'top') dir = new THREE.Vector3(0, -0.001, 1);
+    else if (view === 'axis' && mandrel) {
+      // From the mandrel's far end (+z of its link), away from the spindle's drive.
       dir = new THREE.Vector3(0, 0, 1).applyQuaternion(mandrel.getWorldQuaternion(new THREE.Quaternion()));
-      this.controls.target.copy(target);
-      this.camera.position.copy(target).addScaledVector(dir.normalize(), mb.getSize(new THREE.Vector3()).length() * 2.2);
-      this.camera.lookAt(target);
-      return;
+      new THREE.Box3().setFromObject(mandrel).getCenter(centre);
     }
-    this.controls.target.copy(target);
-    this.camera.position.copy(target).addScaledVector(dir.normalize(), size * 1.5);
-    this.camera.lookAt(target);
+    dir.normalize();
+    this.follow = false;
+    this.controls.target.copy(centre);
+    this.camera.position.copy(centre).addScaledVector(dir, 1);
+    this.camera.lookAt(centre);
+    this.camera.updateMatrixWorld();
+    // The distance at which every corner of the box lies within the view.
+    const inv = this.camera.matrixWorldInverse;
+    const tanV = Math.tan(THREE.MathUtils.degToRad(this.camera.fov / 2));
+    const tanH = tanV * this.camera.aspect;
+    let dist = 0;
+    for (const x of [box.min.x, box.max.x]) {
+      for (const y of [box.min.y, box.max.y]) {
+        for (const z of [box.min.z, box.max.z]) {
+          const c = new THREE.Vector3(x, y, z).applyMatrix4(inv);
+          // Camera at the centre + dir: depth -c.z from there; move back until it fits.
+          const depth = -c.z - 1;
+          dist = Math.max(dist, Math.abs(c.x) / tanH - depth, Math.abs(c.y) / tanV - depth);
+        }
+      }
+    }
+    this.camera.position.copy(centre).addScaledVector(dir, Math.max(dist * 1.08, 50));
+    this.camera.lookAt(centre);
+    this.controls.update();
+  }
+
+  /** What the views frame: the moving links' solids, the mandrel and the band. */
+  private frame(): THREE.Box3 {
+    const box = new THREE.Box3();
+    this.scene.updateMatrixWorld(true);
+    this.links.forEach((g, i) => {
+      if (i === 0) return;
+      for (const child of g.children) {
+        if (child.name === 'band' && this.band) {
+          // The whole band, laid or not.
+          this.band.geometry.computeBoundingBox();
+          const b = this.band.geometry.boundingBox;
+          if (b) box.union(b.clone().applyMatrix4(g.matrixWorld));
+        } else if (child.name !== 'path') box.expandByObject(child);
+      }
+    });
+    if (box.isEmpty()) box.setFromObject(this.scene);
+    return box;
+  }
+
+  /** Turns following the payout point on or off (centring it now). */
+  setFollow(on: boolean): void {
+    this.dirty = true;
+    this.follow = on;
+    if (on) {
+      const d = this.payout.position.clone().sub(this.controls.target);
+      this.camera.position.add(d);
+      this.controls.target.add(d);
+      this.controls.update();
+    }
+  }
+
+  /** The camera's position and target, world mm. */
+  view(): { camera: number[]; target: number[] } {
+    return { camera: this.camera.position.toArray(), target: this.controls.target.toArray() };
+  }
+
+  /** Where the payout point is drawn, in pixels from the canvas's centre. */
+  payoutOffset(): [number, number] {
+    const p = this.payout.position.clone().project(this.camera);
+    const c = this.renderer.domElement;
+    return [(p.x * c.clientWidth) / 2, (-p.y * c.clientHeight) / 2];
   }
 
   private resize(): void {
@@ -145,6 +335,7 @@ export class Scene {
     this.renderer.setSize(w, h, false);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
+    this.dirty = true;
   }
 }
 

@@ -1,14 +1,17 @@
 // Drives the page `formcam view` serves in headless Chromium (Debian's,
 // through playwright-core): console errors, the canvas drawn and changed by
 // a seek, the state shown at several seeks, screenshots of each view, time
-// to interactive and frames per second while playing.
+// to interactive and frames per second while playing; the eye trajectory
+// and the band laid drawn (their pixels), the follow camera keeping the
+// payout point centred; and, given a second view of a program that breaks a
+// limit, its violations listed, marked and shown on the readouts.
 //
-//   node viewer/tests/browser.mjs URL SCREENSHOT_DIR OUT_JSON [PLAY_SPEED]
+//   node viewer/tests/browser.mjs URL SCREENSHOT_DIR OUT_JSON [PLAY_SPEED [VIOLATIONS_URL]]
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
 
-const [url, shots, out, speedArg] = process.argv.slice(2);
+const [url, shots, out, speedArg, violationsUrl] = process.argv.slice(2);
 if (!url || !shots || !out) {
   console.error('usage: node browser.mjs URL SCREENSHOT_DIR OUT_JSON [PLAY_SPEED]');
   process.exit(2);
@@ -28,20 +31,25 @@ const browser = await chromium.launch({
 });
 const errors = [];
 let step = 'launch';
+const report = {};
 // A page that stops answering fails the test instead of holding it.
 const watchdog = setTimeout(() => {
   errors.push(`driver: no answer from the page within 300 s (at: ${step})`);
-  writeFileSync(out, JSON.stringify({ errors }, null, 1));
+  writeFileSync(out, JSON.stringify({ errors, ...report }, null, 1));
   process.exit(1);
 }, 300_000);
 try {
-  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-  page.setDefaultTimeout(120_000);
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
-  page.on('pageerror', (e) => errors.push(`page: ${e}`));
-  page.on('requestfailed', (r) => errors.push(`request failed: ${r.url()}`));
-  // Nothing is fetched from anywhere but the server.
-  page.on('request', (r) => { if (!r.url().startsWith(url)) errors.push(`outside request: ${r.url()}`); });
+  const newPage = async (base) => {
+    const p = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+    p.setDefaultTimeout(120_000);
+    p.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
+    p.on('pageerror', (e) => errors.push(`page: ${e}`));
+    p.on('requestfailed', (r) => errors.push(`request failed: ${r.url()}`));
+    // Nothing is fetched from anywhere but the server.
+    p.on('request', (r) => { if (!r.url().startsWith(base)) errors.push(`outside request: ${r.url()}`); });
+    return p;
+  };
+  const page = await newPage(url);
 
   const opened = Date.now();
   step = 'open';
@@ -50,7 +58,7 @@ try {
   const tti_s = (Date.now() - opened) / 1000;
 
   // The canvas as drawn: how many colours, and a hash of its pixels.
-  const pixels = () => page.evaluate(() => {
+  const pixelsOf = (p) => p.evaluate(() => {
     const c = document.querySelector('#stage canvas');
     const d = document.createElement('canvas');
     d.width = c.width;
@@ -67,6 +75,8 @@ try {
     }
     return { colours: colours.size, hash };
   });
+  const pixels = () => pixelsOf(page);
+  const frame = (p) => p.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
 
   const duration_s = await page.evaluate(() => window.formcam.duration_s);
   step = 'pixels';
@@ -86,6 +96,53 @@ try {
     await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
     await page.screenshot({ path: join(shots, `${view}.png`) });
   }
+  step = 'overlays';
+  // The band laid grows: little of it early, more late, all at the end.
+  await page.click('#views button[data-view="front"]');
+  const band = [];
+  for (const f of [0.05, 0.5, 1]) {
+    await page.evaluate((t) => window.formcam.seek(t), f * duration_s);
+    const st = await page.evaluate(() => window.formcam.state());
+    band.push({ at: f, band_points: st.band_points, band_total: st.band_total });
+  }
+  await page.evaluate((t) => window.formcam.seek(t), 0.5 * duration_s);
+  await page.click('#views button[data-view="axis"]');
+  await frame(page);
+  await page.screenshot({ path: join(shots, 'band-half.png') });
+  const drawn = await pixels();
+  await page.evaluate(() => window.formcam.overlays({ band: false }));
+  const noBand = await pixels();
+  await page.evaluate(() => window.formcam.overlays({ band: true, eye: false }));
+  const noEye = await pixels();
+  await page.evaluate(() => window.formcam.overlays({ eye: true }));
+  const overlays = {
+    band,
+    eye_points: (await page.evaluate(() => window.formcam.state())).eye_points,
+    band_pixels_differ: drawn.hash !== noBand.hash,
+    eye_pixels_differ: drawn.hash !== noEye.hash,
+  };
+  step = 'follow';
+  // Following the payout point: it stays at the centre as the camera moves.
+  await page.click('#views button[data-view="front"]');
+  // Not at whole circuits: the payout point elsewhere at the two times.
+  await page.evaluate((t) => window.formcam.seek(t), 0.23 * duration_s);
+  const unfollowed = await page.evaluate(() => window.formcam.state());
+  await page.evaluate(() => window.formcam.follow(true));
+  await frame(page);
+  const f1 = await page.evaluate(() => window.formcam.state());
+  await page.evaluate((t) => window.formcam.seek(t), 0.71 * duration_s);
+  await frame(page);
+  const f2 = await page.evaluate(() => window.formcam.state());
+  await page.screenshot({ path: join(shots, 'follow.png') });
+  await page.evaluate(() => window.formcam.follow(false));
+  const follow = {
+    before_px: unfollowed.payout_px,
+    px: [f1.payout_px, f2.payout_px],
+    camera: [f1.camera, f2.camera],
+    payout: [f1.payout, f2.payout],
+    follow: f2.follow,
+  };
+  Object.assign(report, { overlays, follow });
   step = 'play';
   const speed = Number(speedArg ?? 10);
   const fps = await page.evaluate(async (s) => {
@@ -99,10 +156,30 @@ try {
     return (f.frames() - n0) / ((performance.now() - t0) / 1000);
   }, speed);
   await page.screenshot({ path: join(shots, 'playing.png') });
-  writeFileSync(out, JSON.stringify({ errors, tti_s, fps, speed, duration_s, before, after, states }, null, 1));
+  Object.assign(report, { tti_s, fps, speed, duration_s, before, after, states });
+  // One page at a time: the first one's drawing would slow the second.
+  await page.close();
+  if (violationsUrl) {
+    step = 'violations';
+    const v = await newPage(violationsUrl);
+    await v.goto(violationsUrl);
+    await v.evaluate(() => window.formcam.ready);
+    const listed = await v.$$eval('#violations li', (li) => li.map((x) => x.textContent));
+    const marks = await v.$$eval('#marks .mark', (m) => m.length);
+    // A mark goes to where its violation first happens.
+    const first = await v.evaluate(async () => (await (await fetch('/api/violations')).json()).violations[0]);
+    // Marks close in time overlap: the first one clicked as a user's click would.
+    await v.evaluate(() => document.querySelector('#marks .mark').click());
+    await v.waitForFunction((t) => Math.abs(window.formcam.state().time_s - t) < 1e-9, first.time_s);
+    const at = await v.evaluate(() => window.formcam.state());
+    const red = await v.$$eval('#readouts td.v.alarm', (c) => c.length);
+    await v.screenshot({ path: join(shots, 'violations.png') });
+    report.violations = { listed, marks, first, state: at, red_cells: red };
+  }
+  writeFileSync(out, JSON.stringify({ errors, ...report }, null, 1));
 } catch (e) {
   errors.push(`driver: ${e}`);
-  writeFileSync(out, JSON.stringify({ errors }, null, 1));
+  writeFileSync(out, JSON.stringify({ errors, ...report }, null, 1));
 } finally {
   clearTimeout(watchdog);
   await browser.close();

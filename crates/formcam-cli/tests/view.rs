@@ -2,8 +2,11 @@
 //! errors with exit code 2; and the page in a real browser (headless
 //! Chromium driven by `viewer/tests/browser.mjs`): no console errors, the
 //! canvas drawn and changed by a seek, and the payout point it shows equal
-//! to `formcam machine fk` of the axes it shows. Screenshots go to
-//! `target/screenshots/`.
+//! to `formcam machine fk` of the axes it shows; the eye trajectory and the
+//! band laid drawn, the band growing; the follow camera keeping the payout
+//! point centred; and a program that breaks a tightened limit with its
+//! violations listed, marked on the timeline and red on the readouts.
+//! Screenshots go to `target/screenshots/`.
 //!
 //! The browser test says it was skipped without `/usr/bin/chromium`,
 //! `viewer/node_modules` or a page built into the binary, unless
@@ -35,8 +38,14 @@ impl Drop for Running {
 
 /// Starts `formcam view OUT --port 0` and reads the address it prints first.
 fn view(out: &Path) -> Running {
+    view_with(out, &[])
+}
+
+/// [`view`] with more arguments.
+fn view_with(out: &Path, more: &[&str]) -> Running {
     let mut child = formcam()
         .args(["view", s(out), "--port", "0"])
+        .args(more)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
@@ -164,11 +173,17 @@ fn the_browser_shows_the_payout_point_formcam_machine_fk_gives() {
     }
     let out = result("browser");
     let v = view(&out);
+    // The same program on a machine whose carriage stops at X = 100 mm.
+    let tight = out.parent().unwrap().join("winder-tight.toml");
+    let text = std::fs::read_to_string(machines().join("winder-4axis.toml")).unwrap();
+    assert!(text.contains("max_mm = 3000.0"));
+    std::fs::write(&tight, text.replace("max_mm = 3000.0", "max_mm = 100.0")).unwrap();
+    let v_tight = view_with(&out, &["--machine", s(&tight)]);
     let report = out.parent().unwrap().join("browser.json");
     let shots = repo().join("target/screenshots");
     let node = Command::new("node")
         .arg(repo().join("viewer/tests/browser.mjs"))
-        .args([&v.url, s(&shots), s(&report)])
+        .args([&v.url, s(&shots), s(&report), "10", &v_tight.url])
         .output()
         .unwrap();
     assert!(
@@ -177,6 +192,7 @@ fn the_browser_shows_the_payout_point_formcam_machine_fk_gives() {
         String::from_utf8_lossy(&node.stderr)
     );
     drop(v);
+    drop(v_tight);
     let r: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     assert_eq!(r["errors"], serde_json::json!([]), "{r:#}");
@@ -243,6 +259,75 @@ fn the_browser_shows_the_payout_point_formcam_machine_fk_gives() {
         times.push(st["time_s"].as_f64().unwrap());
     }
     assert!(times.windows(2).all(|w| w[0] < w[1]), "{times:?}");
+    // The eye trajectory and the band drawn; the band grows to the whole.
+    let o = &r["overlays"];
+    assert!(o["eye_points"].as_u64().unwrap() > 100, "{o}");
+    let band: Vec<(u64, u64)> = o["band"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| {
+            (
+                b["band_points"].as_u64().unwrap(),
+                b["band_total"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    assert!(band[0].1 > 100, "{o}");
+    assert!(band[0].0 < band[1].0 && band[1].0 < band[2].0, "{o}");
+    assert_eq!(band[2].0, band[2].1, "{o}");
+    assert_eq!(o["band_pixels_differ"], true, "{o}");
+    assert_eq!(o["eye_pixels_differ"], true, "{o}");
+    // Following: the payout point at the centre (within a pixel) at two
+    // times, the camera moved with it.
+    let f = &r["follow"];
+    for px in f["px"].as_array().unwrap() {
+        let p: Vec<f64> = px
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        assert!(p[0].abs() < 1.0 && p[1].abs() < 1.0, "{f}");
+    }
+    // The camera moved by as much as the payout point, which moved.
+    let v3 = |v: &serde_json::Value| -> Vec<f64> {
+        v.as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    let (c0, c1) = (v3(&f["camera"][0]), v3(&f["camera"][1]));
+    let (p0, p1) = (v3(&f["payout"][0]), v3(&f["payout"][1]));
+    let moved: f64 = (0..3).map(|k| (p1[k] - p0[k]).powi(2)).sum::<f64>().sqrt();
+    assert!(moved > 1.0, "{f}");
+    for k in 0..3 {
+        assert!(((c1[k] - c0[k]) - (p1[k] - p0[k])).abs() < 1e-6, "{f}");
+    }
+    // The tightened carriage: the position violation listed and marked; at
+    // its first time the X readout is red.
+    let v = &r["violations"];
+    let listed: Vec<&str> = v["listed"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l.as_str().unwrap())
+        .collect();
+    assert!(
+        listed.iter().any(|l| l.starts_with("position axis X")),
+        "{listed:?}"
+    );
+    assert!(v["marks"].as_u64().unwrap() >= 1, "{v}");
+    assert!(
+        v["state"]["red_axes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|a| a == v["first"]["axis"].as_str().unwrap()),
+        "{v}"
+    );
+    assert!(v["red_cells"].as_u64().unwrap() >= 1, "{v}");
     eprintln!(
         "browser: time to interactive {:.2} s, {:.1} frames/s playing at {}x; screenshots in {}",
         r["tti_s"].as_f64().unwrap(),

@@ -97,6 +97,15 @@ pub enum ViewError {
         /// What the reader said (with the line).
         source: NcError,
     },
+    /// The simulator cannot time the program (a block without a feed, a
+    /// time that is not finite).
+    #[error("{}: {source}", path.display())]
+    Timeline {
+        /// The program file.
+        path: PathBuf,
+        /// What the simulator said (with the block and line).
+        source: Box<formcam_sim::SimError>,
+    },
     /// A program without motion blocks.
     #[error("{}: no motion blocks", path.display())]
     EmptyProgram {
@@ -109,6 +118,17 @@ pub enum ViewError {
         /// The path table.
         path: PathBuf,
         /// The line (1-based; 1 for the header).
+        line: usize,
+        /// What is wrong.
+        problem: String,
+    },
+    /// A table of the result (`check.json`, `eye.csv`, `axes.csv`,
+    /// `blocks.csv`) lacks a column or key, or holds a bad value.
+    #[error("{}:{line}: {problem}", path.display())]
+    Table {
+        /// The file.
+        path: PathBuf,
+        /// The line (1-based; 1 for the header; 0 for a JSON file).
         line: usize,
         /// What is wrong.
         problem: String,

@@ -7,22 +7,30 @@
 //! the result folder's files under `/files/` (plain paths only, nothing
 //! outside the folder) and the JSON the page draws under `/api/`
 //! (`result`, `timeline?samples=N`, `sample?t=T`, `blocks`, `machine`,
-//! `mandrel`, `program`). The page does no kinematics: every pose it draws
-//! is one the server sent ([`Timeline`]).
+//! `mandrel`, `program`, `violations`, `eye`, `band`). The page does no
+//! kinematics: every pose it draws is one the server sent ([`Timeline`],
+//! the simulator's timeline of formcam-sim), and every violation one the
+//! checks found ([`Violations`]).
 
+mod band;
 mod error;
 mod folder;
+mod overlay;
 mod page;
 pub mod request;
 mod scene;
 mod server;
 mod timeline;
+mod violations;
 
+pub use band::{BAND_POINTS, Band};
 pub use error::ViewError;
 pub use folder::{ProgramFile, RunFolder, load_machine};
+pub use overlay::{EYE_POINTS, EyeTrajectory, Overlay, Shown};
 pub use page::Page;
 pub use scene::{
     LinkScene, MERIDIAN_POINTS, MachineScene, MandrelScene, PATH_POINTS, Solid, SolidShape, thin,
 };
 pub use server::{DEFAULT_SAMPLES, MAX_SAMPLES, View, ViewOptions, ViewServer};
-pub use timeline::{AxisHead, Sample, Timeline, TimelineHead, axis_specs, block_lines};
+pub use timeline::{AxisHead, Sample, Timeline, TimelineHead};
+pub use violations::{AxisRange, Violations};

@@ -12,10 +12,11 @@ use tiny_http::{Header, Method, Request, Response};
 
 use crate::ViewError;
 use crate::folder::RunFolder;
+use crate::overlay::{Overlay, Shown};
 use crate::page::Page;
 use crate::request::{MAX_HEADER_BYTES, Refusal, Target, file_under};
 use crate::scene::{MachineScene, MandrelScene};
-use crate::timeline::{Sample, Timeline, TimelineHead};
+use crate::timeline::{Timeline, TimelineHead};
 
 /// Samples of `/api/timeline` when the query names none.
 pub const DEFAULT_SAMPLES: usize = 2000;
@@ -44,6 +45,7 @@ pub struct View {
     mandrel: Option<Vec<u8>>,
     program: Option<String>,
     timeline: Option<Timeline>,
+    overlay: Option<Overlay>,
     page: Page,
 }
 
@@ -76,6 +78,10 @@ impl View {
             )?),
             None => None,
         };
+        let overlay = match &timeline {
+            Some(tl) => Some(Overlay::open(&real, &folder.summary, tl)?),
+            None => None,
+        };
         Ok(Self {
             root: real,
             summary: json(&folder.summary),
@@ -83,6 +89,7 @@ impl View {
             mandrel,
             program: folder.program.map(|p| p.text),
             timeline,
+            overlay,
             page,
         })
     }
@@ -127,7 +134,7 @@ impl View {
                     JSON,
                     json(&TimelineBody {
                         head: tl.head(),
-                        samples: tl.samples(n),
+                        samples: tl.samples(n).into_iter().map(|s| self.shown(s)).collect(),
                     }),
                 ))
             }
@@ -138,7 +145,7 @@ impl View {
                     .and_then(|s| s.parse::<f64>().ok())
                     .filter(|t| t.is_finite())
                     .ok_or(Refusal::Path)?;
-                Ok((JSON, json(&tl.sample(t))))
+                Ok((JSON, json(&self.shown(tl.sample(t)))))
             }
             ["api", "blocks"] => {
                 let tl = self.timeline.as_ref().ok_or(Refusal::NotFound)?;
@@ -150,10 +157,13 @@ impl View {
                     json(&BlocksBody {
                         starts: spans.iter().map(|s| s.0).collect(),
                         ends: spans.iter().map(|s| s.1).collect(),
-                        lines: tl.lines(),
+                        lines: &tl.lines(),
                     }),
                 ))
             }
+            ["api", "violations"] => self.overlay_json(|o| Some(json(&o.violations))),
+            ["api", "eye"] => self.overlay_json(|o| Some(json(&o.eye))),
+            ["api", "band"] => self.overlay_json(|o| o.band.as_ref().map(json)),
             ["api", ..] => Err(Refusal::NotFound),
             ["files", rest @ ..] if !rest.is_empty() => {
                 let path = file_under(&self.root, &target.segments[1..])?;
@@ -167,6 +177,29 @@ impl View {
         }
     }
 
+    /// A sample with what the overlays add to it.
+    fn shown(&self, s: crate::timeline::Sample) -> Shown {
+        match &self.overlay {
+            Some(o) => o.shown(s),
+            None => Shown {
+                sample: s,
+                laid: None,
+            },
+        }
+    }
+
+    /// An overlay's JSON, or 404 when the result has none.
+    fn overlay_json(
+        &self,
+        body: impl Fn(&Overlay) -> Option<Vec<u8>>,
+    ) -> Result<(&'static str, Vec<u8>), Refusal> {
+        self.overlay
+            .as_ref()
+            .and_then(body)
+            .map(|b| (JSON, b))
+            .ok_or(Refusal::NotFound)
+    }
+
     fn page_file(&self, name: &str) -> Result<(&'static str, Vec<u8>), Refusal> {
         let body = self.page.get(name).ok_or(Refusal::NotFound)?;
         Ok((content_type(Path::new(name)), body.to_vec()))
@@ -178,7 +211,7 @@ impl View {
 struct TimelineBody {
     #[serde(flatten)]
     head: TimelineHead,
-    samples: Vec<Sample>,
+    samples: Vec<Shown>,
 }
 
 /// `/api/blocks`: per block its start, end (s) and program line.

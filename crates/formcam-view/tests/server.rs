@@ -1,7 +1,10 @@
 //! The server on a port the system chooses, asked with raw HTTP requests:
 //! the JSON the page draws agrees with the machine's forward kinematics at
 //! the program's own block times, the result's files come back byte for
-//! byte, and every request outside the rules is refused.
+//! byte, and every request outside the rules is refused; the violations are
+//! the simulator's checks (or the folder's `check.json`), the eye trajectory
+//! the payout point by forward kinematics, the band laid the circuit tables
+//! by the spindle angle.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
@@ -12,7 +15,8 @@ use std::time::Duration;
 
 use formcam_machine::Machine;
 use formcam_nc::{Block, Dialect, Feed, Program, write};
-use formcam_view::{Page, ViewOptions, ViewServer, axis_specs};
+use formcam_sim::{AxisLimits, FeedRule, Timeline, check_timeline, program_axes};
+use formcam_view::{Page, ViewOptions, ViewServer};
 use serde_json::Value;
 
 /// Block times of the program, s.
@@ -43,7 +47,7 @@ fn folder(name: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let m = machine();
-    let mut p = Program::new("VIEW", axis_specs(&m));
+    let mut p = Program::new("VIEW", program_axes(&m));
     let t = targets();
     p.blocks.push(Block::rapid(t[0].to_vec()));
     for (k, b) in t[1..].iter().enumerate() {
@@ -347,4 +351,161 @@ fn a_folder_without_a_summary_names_the_file() {
         .unwrap()
         .to_string();
     assert!(e.contains("summary.json"), "{e}");
+}
+
+/// The simulator's timeline of the test program, as `formcam check` plays it.
+fn sim_timeline(dir: &Path) -> Timeline {
+    let m = machine();
+    let text = std::fs::read_to_string(dir.join("program.mpf")).unwrap();
+    let (p, lines, d) = formcam_sim::read_program(&dir.join("program.mpf"), &text, &m).unwrap();
+    Timeline::new(&p, &lines, FeedRule::of(d), &m).unwrap()
+}
+
+#[test]
+fn the_violations_are_the_simulators_checks_with_their_blocks_times() {
+    let dir = folder("violations");
+    let server = start(&dir);
+    let v = server.json("/api/violations");
+    assert_eq!(v["source"], "check");
+    let tl = sim_timeline(&dir);
+    let want = check_timeline(&tl, &AxisLimits::of(&machine()));
+    // From rest to 180 deg/s on A in the first feed block: a jump at least.
+    assert!(!want.is_empty());
+    assert_eq!(v["clean"], false);
+    let got = v["violations"].as_array().unwrap();
+    assert_eq!(got.len(), want.len());
+    for (g, w) in got.iter().zip(&want) {
+        assert_eq!(g["kind"], w.kind.name());
+        assert_eq!(g["axis"], w.axis.as_str());
+        assert_eq!(g["block"], w.block);
+        assert_eq!(g["time_s"].as_f64().unwrap(), w.time_s);
+        let b = tl.block(w.block - 1).unwrap();
+        assert_eq!(
+            nums(&g["spans"][0]),
+            vec![b.start_s, b.start_s + b.duration_s]
+        );
+    }
+    let limits = v["limits"].as_array().unwrap();
+    assert_eq!(limits[2]["axis"], "Y");
+    assert_eq!(
+        (limits[2]["min"].as_f64(), limits[2]["max"].as_f64()),
+        (Some(40.0), Some(800.0))
+    );
+    // Unlimited: null.
+    assert!(limits[0]["min"].is_null());
+}
+
+#[test]
+fn a_check_json_in_the_folder_is_served_unknown_kinds_included() {
+    let dir = folder("check-json");
+    std::fs::write(
+        dir.join("check.json"),
+        r#"{"clean": false, "violations": [{"kind": "collision", "links": ["eye", "mandrel"], "block": 3, "line": 9, "time_s": 1.0}]}"#,
+    )
+    .unwrap();
+    let server = start(&dir);
+    let v = server.json("/api/violations");
+    assert_eq!(v["source"], "check.json");
+    let c = &v["violations"][0];
+    assert_eq!(c["kind"], "collision");
+    assert_eq!(c["links"][1], "mandrel");
+    // Block 3 (1-based) runs from 0.5 s to 1.75 s.
+    assert_eq!(nums(&c["spans"][0]), vec![0.5, 1.75]);
+    std::fs::write(dir.join("check.json"), "{}").unwrap();
+    let e = ViewServer::bind(&dir, &ViewOptions::default(), Page::none())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("check.json") && e.contains("violations"), "{e}");
+}
+
+#[test]
+fn the_eye_trajectory_is_the_payout_point_at_every_block_end() {
+    let dir = folder("eye");
+    let server = start(&dir);
+    let eye = server.json("/api/eye");
+    let points = eye["points"].as_array().unwrap();
+    // The start and five block ends.
+    assert_eq!(points.len(), 6);
+    assert_eq!(eye["ends"], 6);
+    let m = machine();
+    let payout = m.roles.payout;
+    let mut q = vec![0.0, 0.0, 250.0, 0.0];
+    for (k, p) in points.iter().enumerate() {
+        if k > 0 {
+            let t = targets()[k - 1];
+            q = vec![t[0].to_radians(), t[1], t[2], t[3].to_radians()];
+        }
+        let want = m.key_points(&q)[payout];
+        let got = nums(p);
+        for (a, b) in got.iter().zip([want.x, want.y, want.z]) {
+            assert!((a - b).abs() < 1e-9, "point {k}: {got:?} {want}");
+        }
+    }
+}
+
+/// Writes one circuit's tables (the spindle turning 400 deg over `x` in
+/// 0..100 mm, the path turning 3 rad) and `blocks.csv` ending the layer at
+/// the program's last A (800 deg): two circuits from A = 0.
+fn band_tables(dir: &Path) {
+    let mut eye = String::from("x,z,r,v,alpha,l,eye_z,eye_r,eye_v,lambda,u,margin\n");
+    let mut axes = String::from("x,A,X,Y,B\n");
+    for i in 0..=100 {
+        let x = f64::from(i);
+        eye.push_str(&format!(
+            "{x},{},{},{},0,0,0,0,0,0,0,0\n",
+            2.0 * x,
+            50.0 + x / 10.0,
+            0.03 * x
+        ));
+        axes.push_str(&format!("{x},{},0,250,0\n", 4.0 * x));
+    }
+    std::fs::write(dir.join("eye.csv"), eye).unwrap();
+    std::fs::write(dir.join("axes.csv"), axes).unwrap();
+    std::fs::write(
+        dir.join("blocks.csv"),
+        "block,t,A,X,Y,B,layer,t_star,mu\n1,1.75,400,0,250,0,1,1,1\n2,2.75,800,20,300,0,1,1,1\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("summary.json"),
+        r#"{"job": "vessel.toml", "machine_shipped": "winder-4axis", "program_file": "program.mpf", "circuits": 2}"#,
+    )
+    .unwrap();
+}
+
+#[test]
+fn the_band_is_laid_circuit_by_circuit_as_the_spindle_turns() {
+    let dir = folder("band");
+    band_tables(&dir);
+    let server = start(&dir);
+    let band = server.json("/api/band");
+    assert_eq!(band["link"], machine().roles.mandrel);
+    let points = band["points"].as_array().unwrap();
+    // Two circuits of 101 points sharing their join.
+    assert_eq!(points.len(), 201);
+    let on = |k: usize, x: f64, turn: f64| {
+        let (z, r, v) = (2.0 * x, 50.0 + x / 10.0, 0.03 * x + turn);
+        let p = nums(&points[k]);
+        for (a, b) in p.iter().zip([r * v.cos(), r * v.sin(), z]) {
+            assert!((a - b).abs() < 1e-9, "point {k}: {p:?}");
+        }
+    };
+    on(0, 0.0, 0.0);
+    on(100, 100.0, 0.0);
+    // The second circuit starts where the first ends, turned on by 3 rad.
+    on(150, 50.0, 3.0);
+    on(200, 100.0, 3.0);
+    // A = 0 at the start: the first point; A = 400 at 1.75 s: the first
+    // circuit; A = 720 at 2.5 s: x = 80 of the second; A = 800: all.
+    for (t, laid) in [(0.0, 1), (1.75, 101), (2.5, 181), (4.5, 201)] {
+        let s = server.json(&format!("/api/sample?t={t}"));
+        assert_eq!(s["laid"], laid, "t {t}");
+    }
+    let tl = server.json("/api/timeline?samples=3");
+    assert_eq!(tl["samples"][2]["laid"], 201);
+    // Without the tables: no band, and no `laid` in the samples.
+    let plain = start(&folder("band-none"));
+    assert_eq!(get(&plain, "/api/band").0, 404);
+    assert!(plain.json("/api/sample?t=1").get("laid").is_none());
 }

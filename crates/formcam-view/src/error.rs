@@ -3,9 +3,11 @@
 use std::io;
 use std::path::PathBuf;
 
+use formcam_correct::CorrectError;
 use formcam_files::ReadError;
 use formcam_machine::MachineError;
 use formcam_nc::NcError;
+use formcam_sim::SimError;
 
 /// Why a result folder cannot be shown.
 #[derive(Debug, thiserror::Error)]
@@ -112,6 +114,44 @@ pub enum ViewError {
         line: usize,
         /// What is wrong.
         problem: String,
+    },
+    /// A CSV table of the result lacks a column or holds a bad number.
+    #[error("{}:{line}: {problem}", path.display())]
+    Table {
+        /// The table.
+        path: PathBuf,
+        /// The line (1-based; 1 for the header).
+        line: usize,
+        /// What is wrong.
+        problem: String,
+    },
+    /// A program could not be timed (a block without a feed, a time that is
+    /// not finite).
+    #[error("{}: {source}", path.display())]
+    Timeline {
+        /// The program file.
+        path: PathBuf,
+        /// What the simulator said (with the block and line).
+        source: Box<SimError>,
+    },
+    /// The folder is no result `formcam view` knows.
+    #[error(
+        "{}: not a result folder: no summary.json (a winding or dressing result) and no report.json naming its measurements (a correction)",
+        path.display()
+    )]
+    UnknownResult {
+        /// The folder.
+        path: PathBuf,
+    },
+    /// The measurements a correction report names cannot be read.
+    #[error("{}: `measurements` = {}: {source}", report.display(), measurements.display())]
+    Measurements {
+        /// The report naming them.
+        report: PathBuf,
+        /// The measurement file as the report names it.
+        measurements: PathBuf,
+        /// What is wrong.
+        source: Box<CorrectError>,
     },
     /// The server could not listen.
     #[error("cannot listen on 127.0.0.1:{port}: {source}")]

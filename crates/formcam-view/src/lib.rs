@@ -10,19 +10,29 @@
 //! `mandrel`, `program`). The page does no kinematics: every pose it draws
 //! is one the server sent ([`Timeline`]).
 
+mod correction;
+mod dressing;
 mod error;
 mod folder;
 mod page;
+mod plots;
 pub mod request;
 mod scene;
 mod server;
+mod table;
 mod timeline;
 
+pub use correction::{CorrectionBody, SectionStats, signed_deviation};
+pub use dressing::{
+    DRESSING_PROGRAM, DresserPass, DresserSample, DressingBody, DressingView, MrrPlot,
+};
 pub use error::ViewError;
-pub use folder::{ProgramFile, RunFolder, load_machine};
+pub use folder::{ProgramFile, ResultKind, RunFolder, load_machine};
 pub use page::Page;
+pub use plots::{AxisPlots, MeridianPlot, PullPlot, WindingPlots, program_timeline};
 pub use scene::{
     LinkScene, MERIDIAN_POINTS, MachineScene, MandrelScene, PATH_POINTS, Solid, SolidShape, thin,
 };
 pub use server::{DEFAULT_SAMPLES, MAX_SAMPLES, View, ViewOptions, ViewServer};
+pub use table::Table;
 pub use timeline::{AxisHead, Sample, Timeline, TimelineHead, axis_specs, block_lines};

@@ -107,7 +107,7 @@ export async function openCorrection(host: HTMLElement, ready: Promise<void>): P
   const history = Array.isArray(c.report.history) ? (c.report.history as Record<string, unknown>[]) : [];
   history.forEach((h) => rows.push([`run ${String(h.iteration)}: max / RMS deviation (mm)`,
     `${Number(h.max_deviation_mm).toFixed(4)} / ${Number(h.rms_deviation_mm).toFixed(4)}`]));
-  q('.report').innerHTML = rows.map(([k, v]) => `<tr><td>${k}</td><td>${typeof v === 'number' ? v.toFixed(4) : esc(String(v ?? ''))}</td></tr>`).join('');
+  q('.report').innerHTML = rows.map(([k, v]) => `<tr><td>${k}</td><td>${typeof v === 'number' ? (Number.isInteger(v) ? String(v) : v.toFixed(4)) : esc(String(v ?? ''))}</td></tr>`).join('');
 
   window.formcam = {
     ready,

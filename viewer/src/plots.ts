@@ -62,7 +62,16 @@ export function counts(data: ArrayLike<(number | null)[] | ArrayLike<number | nu
   return out;
 }
 
-/** A titled uPlot in `host`. */
+/** A value range at least 1e-3 of the values' magnitude wide, so that a
+ * constant (or nearly constant) series shows as the flat line it is. */
+export function spanRange(_u: uPlot, min: number | null, max: number | null): uPlot.Range.MinMax {
+  if (min === null || max === null || !Number.isFinite(min) || !Number.isFinite(max)) return [0, 1];
+  const mid = (min + max) / 2;
+  const half = Math.max((max - min) / 2, 1e-3 * Math.max(Math.abs(mid), 1e-9)) * 1.05;
+  return [mid - half, mid + half];
+}
+
+/** A titled uPlot in `host`; every value scale at least [`spanRange`] wide. */
 export function chart(
   host: HTMLElement,
   title: string,
@@ -73,8 +82,13 @@ export function chart(
   const div = document.createElement('div');
   div.className = 'chart';
   host.appendChild(div);
+  const scales: uPlot.Scales = { ...(opts.scales ?? {}) };
+  for (const s of opts.series.slice(1)) {
+    const key = s.scale ?? 'y';
+    scales[key] = { range: spanRange, ...(scales[key] ?? {}) };
+  }
   return new uPlot(
-    { width: Math.max(host.clientWidth - 24, 320), height, title, ...opts },
+    { width: Math.max(host.clientWidth - 24, 320), height, title, ...opts, scales },
     data,
     div,
   );

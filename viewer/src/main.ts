@@ -9,6 +9,9 @@ import type { View } from './scene';
 import { ViolationView } from './violations';
 import { ProgramView } from './program';
 import { AxesPlot } from './plot';
+import { WindingPlots } from './plots';
+import { openDressing } from './dressing';
+import { openCorrection } from './correction';
 
 /** What `window.formcam.state()` returns: the state shown. */
 interface State {
@@ -111,6 +114,7 @@ async function main(): Promise<void> {
   } catch (e) {
     console.warn('plot', e);
   }
+  const plots = new WindingPlots($('plots-panel'), $('plots-toggle'));
 
   const duration = tl.duration_s;
   let shown: Sample = tl.samples[0];
@@ -130,6 +134,7 @@ async function main(): Promise<void> {
     readouts(s, alarm.axes);
     programView.mark(s.line);
     plot?.at(s.t, s.axes);
+    plots.at(s.t);
     ($('scrub') as HTMLInputElement).value = String(Math.round((t / Math.max(duration, 1e-9)) * 100000));
     ($('block') as HTMLInputElement).value = String(s.block);
     $('clock').textContent = `${clock(t)} / -${clock(duration - t)}`;
@@ -299,7 +304,18 @@ function clock(t: number): string {
   return `${m}:${(s - 60 * m).toFixed(1).padStart(4, '0')}`;
 }
 
-main().then(readyResolve, (e) => {
+/** The view of the result's kind: a winding result's 3-D view, or the 2-D
+ * view of a dressing or correction result in place of it. */
+async function start(): Promise<void> {
+  const { kind } = await api.json<{ kind: string }>('/api/kind');
+  if (kind === 'winding') return main();
+  $('app').hidden = true;
+  const host = $('app2d');
+  host.hidden = false;
+  return kind === 'dressing' ? openDressing(host, ready) : openCorrection(host, ready);
+}
+
+start().then(readyResolve, (e) => {
   $('status').textContent = String(e);
   console.error(e);
   readyReject(e);

@@ -336,3 +336,108 @@ fn the_browser_shows_the_payout_point_formcam_machine_fk_gives() {
         shots.display()
     );
 }
+
+/// Runs `viewer/tests/results.mjs KIND` on `formcam view OUT`: its report.
+fn drive(kind: &str, out: &Path) -> serde_json::Value {
+    let v = view(out);
+    let report = out.parent().unwrap().join(format!("{kind}.json"));
+    let shots = repo().join("target/screenshots");
+    let node = Command::new("node")
+        .arg(repo().join("viewer/tests/results.mjs"))
+        .args([kind, &v.url, s(&shots), s(&report)])
+        .output()
+        .unwrap();
+    drop(v);
+    assert!(
+        node.status.success(),
+        "{}",
+        String::from_utf8_lossy(&node.stderr)
+    );
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(r["errors"], serde_json::json!([]), "{r:#}");
+    r
+}
+
+/// A canvas drawn: more than a few colours.
+fn drawn(c: &serde_json::Value) -> bool {
+    c["colours"].as_u64().unwrap() > 5
+}
+
+#[test]
+fn the_browser_draws_the_winding_plots_with_every_point_the_server_sent() {
+    if !browser_present() {
+        return;
+    }
+    let r = drive("plots", &result("browser-plots"));
+    assert_eq!(r["series"], r["expected"], "{r:#}");
+    // Angle, thickness, pull speed, four axes, block times.
+    let canvases = r["canvases"].as_array().unwrap();
+    assert_eq!(canvases.len(), 8, "{r:#}");
+    assert!(canvases.iter().all(drawn), "a flat plot: {r:#}");
+}
+
+#[test]
+fn the_browser_plays_the_dressing_at_the_points_the_server_computes() {
+    if !browser_present() {
+        return;
+    }
+    let out = scratch("browser-dress").join("out");
+    let job = repo().join("examples/dress-ballscrew-nut.toml");
+    let o = formcam()
+        .args(["dress", s(&job), "-o", s(&out)])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let r = drive("dressing", &out);
+    assert!(drawn(&r["first"][0]) && drawn(&r["mrr"][0]), "{r:#}");
+    assert_ne!(
+        r["first"][0]["hash"], r["after"][0]["hash"],
+        "no change after a seek"
+    );
+    let point =
+        |v: &serde_json::Value| -> [f64; 2] { [v[0].as_f64().unwrap(), v[1].as_f64().unwrap()] };
+    let mut seen = Vec::new();
+    for s in r["seeks"].as_array().unwrap() {
+        let (shown, server) = (
+            point(&s["shown"]["dresser"]),
+            point(&s["server"]["dresser"]),
+        );
+        assert!(
+            (shown[0] - server[0]).abs() < 1e-6 && (shown[1] - server[1]).abs() < 1e-6,
+            "{s}"
+        );
+        seen.push(shown);
+    }
+    assert!(seen.windows(2).all(|w| w[0] != w[1]), "{seen:?}");
+    // Playing moves the time and the dresser on.
+    let (before, playing) = (&r["play"]["before"], &r["play"]["playing"]);
+    assert!(
+        playing["time_s"].as_f64().unwrap() > before["time_s"].as_f64().unwrap(),
+        "{r:#}"
+    );
+    assert_ne!(before["dresser"], playing["dresser"], "{r:#}");
+}
+
+#[test]
+fn the_browser_maps_every_measured_point_of_a_correction() {
+    if !browser_present() {
+        return;
+    }
+    let out = scratch("browser-correct").join("out");
+    let job = repo().join("examples/correct-mould.toml");
+    let o = formcam()
+        .args(["correct", s(&job), "-o", s(&out)])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let r = drive("correction", &out);
+    let cmm = std::fs::read_to_string(repo().join("examples/correct/cmm.csv")).unwrap();
+    let points = cmm.lines().skip(1).filter(|l| !l.trim().is_empty()).count();
+    assert_eq!(
+        r["state"]["points"].as_u64().unwrap() as usize,
+        points,
+        "{r:#}"
+    );
+    assert!(drawn(&r["map"][0]) && drawn(&r["sections"][0]), "{r:#}");
+}

@@ -3,9 +3,11 @@
 use std::io;
 use std::path::PathBuf;
 
+use formcam_correct::CorrectError;
 use formcam_files::ReadError;
 use formcam_machine::MachineError;
 use formcam_nc::NcError;
+use formcam_sim::SimError;
 
 /// Why a result folder cannot be shown.
 #[derive(Debug, thiserror::Error)]
@@ -104,7 +106,7 @@ pub enum ViewError {
         /// The program file.
         path: PathBuf,
         /// What the simulator said (with the block and line).
-        source: Box<formcam_sim::SimError>,
+        source: Box<SimError>,
     },
     /// A program without motion blocks.
     #[error("{}: no motion blocks", path.display())]
@@ -132,6 +134,25 @@ pub enum ViewError {
         line: usize,
         /// What is wrong.
         problem: String,
+    },
+    /// The folder is no result `formcam view` knows.
+    #[error(
+        "{}: not a result folder: no summary.json (a winding or dressing result) and no report.json naming its measurements (a correction)",
+        path.display()
+    )]
+    UnknownResult {
+        /// The folder.
+        path: PathBuf,
+    },
+    /// The measurements a correction report names cannot be read.
+    #[error("{}: `measurements` = {}: {source}", report.display(), measurements.display())]
+    Measurements {
+        /// The report naming them.
+        report: PathBuf,
+        /// The measurement file as the report names it.
+        measurements: PathBuf,
+        /// What is wrong.
+        source: Box<CorrectError>,
     },
     /// The server could not listen.
     #[error("cannot listen on 127.0.0.1:{port}: {source}")]

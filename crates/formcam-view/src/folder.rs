@@ -9,6 +9,53 @@ use serde_json::{Map, Value};
 
 use crate::ViewError;
 
+/// What a result folder holds, told apart by its files: a correction
+/// writes `report.json` naming its measurements and no `summary.json`; a
+/// dressing's `summary.json` has `dressing_time_s`; any other
+/// `summary.json` is a winding result's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ResultKind {
+    /// `formcam wind`: the machine, the program, the path.
+    Winding,
+    /// `formcam dress`: the profile, the dresser's path, the program.
+    Dressing,
+    /// `formcam correct`: the measurements' deviations, the report.
+    Correction,
+}
+
+impl ResultKind {
+    /// The kind of the result folder `root`.
+    ///
+    /// # Errors
+    ///
+    /// [`ViewError::NoFolder`], the summary's or report's read errors, or
+    /// [`ViewError::UnknownResult`].
+    pub fn of(root: &Path) -> Result<Self, ViewError> {
+        if !root.is_dir() {
+            return Err(ViewError::NoFolder {
+                path: root.to_path_buf(),
+            });
+        }
+        let summary = root.join("summary.json");
+        if summary.is_file() {
+            let s = read_summary(&summary)?;
+            return Ok(if s.contains_key("dressing_time_s") {
+                Self::Dressing
+            } else {
+                Self::Winding
+            });
+        }
+        let report = root.join("report.json");
+        if report.is_file() && read_summary(&report)?.contains_key("measurements") {
+            return Ok(Self::Correction);
+        }
+        Err(ViewError::UnknownResult {
+            path: root.to_path_buf(),
+        })
+    }
+}
+
 /// What the view reads of a result folder.
 #[derive(Debug, Clone)]
 pub struct RunFolder {
@@ -69,14 +116,15 @@ impl RunFolder {
     }
 }
 
-fn read_text(path: &Path) -> Result<String, ViewError> {
+pub(crate) fn read_text(path: &Path) -> Result<String, ViewError> {
     formcam_files::read_text(path).map_err(|source| ViewError::Read {
         path: path.to_path_buf(),
         source,
     })
 }
 
-fn read_summary(path: &Path) -> Result<Map<String, Value>, ViewError> {
+/// A JSON file holding an object (`summary.json`, `report.json`).
+pub(crate) fn read_summary(path: &Path) -> Result<Map<String, Value>, ViewError> {
     let text = read_text(path)?;
     match serde_json::from_str::<Value>(&text) {
         Ok(Value::Object(m)) => Ok(m),

@@ -13,24 +13,34 @@
 //! checks found ([`Violations`]).
 
 mod band;
+mod correction;
+mod dressing;
 mod error;
 mod folder;
 mod overlay;
 mod page;
+mod plots;
 pub mod request;
 mod scene;
 mod server;
+mod table;
 mod timeline;
 mod violations;
 
 pub use band::{BAND_POINTS, Band};
+pub use correction::{CorrectionBody, SectionStats, signed_deviation};
+pub use dressing::{
+    DRESSING_PROGRAM, DresserPass, DresserSample, DressingBody, DressingView, MrrPlot,
+};
 pub use error::ViewError;
-pub use folder::{ProgramFile, RunFolder, load_machine};
+pub use folder::{ProgramFile, ResultKind, RunFolder, load_machine};
 pub use overlay::{EYE_POINTS, EyeTrajectory, Overlay, Shown};
 pub use page::Page;
+pub use plots::{AxisPlots, MeridianPlot, PullPlot, WindingPlots};
 pub use scene::{
     LinkScene, MERIDIAN_POINTS, MachineScene, MandrelScene, PATH_POINTS, Solid, SolidShape, thin,
 };
 pub use server::{DEFAULT_SAMPLES, MAX_SAMPLES, View, ViewOptions, ViewServer};
+pub use table::Table;
 pub use timeline::{AxisHead, Sample, Timeline, TimelineHead};
 pub use violations::{AxisRange, Violations};

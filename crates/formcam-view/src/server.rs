@@ -11,9 +11,12 @@ use serde::Serialize;
 use tiny_http::{Header, Method, Request, Response};
 
 use crate::ViewError;
-use crate::folder::RunFolder;
+use crate::correction::CorrectionBody;
+use crate::dressing::DressingView;
+use crate::folder::{ResultKind, RunFolder, read_summary};
 use crate::overlay::{Overlay, Shown};
 use crate::page::Page;
+use crate::plots::WindingPlots;
 use crate::request::{MAX_HEADER_BYTES, Refusal, Target, file_under};
 use crate::scene::{MachineScene, MandrelScene};
 use crate::timeline::{Timeline, TimelineHead};
@@ -47,6 +50,13 @@ pub struct View {
     timeline: Option<Timeline>,
     overlay: Option<Overlay>,
     page: Page,
+    kind: ResultKind,
+    /// A winding result's plots (`/api/plots`).
+    plots: Option<Vec<u8>>,
+    /// A dressing result (`/api/dressing`).
+    dressing: Option<(DressingView, Vec<u8>)>,
+    /// A correction result (`/api/correction`).
+    correction: Option<Vec<u8>>,
 }
 
 impl View {
@@ -56,6 +66,10 @@ impl View {
     ///
     /// [`ViewError`] naming the file and the field.
     pub fn open(root: &Path, machine: Option<&Path>, page: Page) -> Result<Self, ViewError> {
+        let kind = ResultKind::of(root)?;
+        if kind != ResultKind::Winding {
+            return Self::open_2d(root, kind, page);
+        }
         let folder = RunFolder::open(root, machine)?;
         let real = root.canonicalize().map_err(|_| ViewError::NoFolder {
             path: root.to_path_buf(),
@@ -82,7 +96,15 @@ impl View {
             Some(tl) => Some(Overlay::open(&real, &folder.summary, tl)?),
             None => None,
         };
+        let plots = json(&WindingPlots::read(
+            root,
+            timeline.as_ref().map(Timeline::sim),
+        )?);
         Ok(Self {
+            kind,
+            plots: Some(plots),
+            dressing: None,
+            correction: None,
             root: real,
             summary: json(&folder.summary),
             machine: json(&scene),
@@ -92,6 +114,43 @@ impl View {
             overlay,
             page,
         })
+    }
+
+    /// A dressing or correction result: its summary or report, the view of
+    /// its kind.
+    fn open_2d(root: &Path, kind: ResultKind, page: Page) -> Result<Self, ViewError> {
+        let real = root.canonicalize().map_err(|_| ViewError::NoFolder {
+            path: root.to_path_buf(),
+        })?;
+        let (summary, dressing, correction) = if kind == ResultKind::Dressing {
+            let s = read_summary(&root.join("summary.json"))?;
+            let d = DressingView::read(root, &s)?;
+            let body = json(d.body());
+            (json(&s), Some((d, body)), None)
+        } else {
+            let r = read_summary(&root.join("report.json"))?;
+            let c = CorrectionBody::read(root, r.clone())?;
+            (json(&r), None, Some(json(&c)))
+        };
+        Ok(Self {
+            root: real,
+            summary,
+            machine: Vec::new(),
+            mandrel: None,
+            program: None,
+            timeline: None,
+            overlay: None,
+            page,
+            kind,
+            plots: None,
+            dressing,
+            correction,
+        })
+    }
+
+    /// What the folder holds.
+    pub fn kind(&self) -> ResultKind {
+        self.kind
     }
 
     /// The timeline of the result's program, if it has one.
@@ -112,6 +171,35 @@ impl View {
         let seg: Vec<&str> = target.segments.iter().map(String::as_str).collect();
         match seg.as_slice() {
             ["api", "result"] => Ok((JSON, self.summary.clone())),
+            ["api", "kind"] => Ok((JSON, json(&serde_json::json!({ "kind": self.kind })))),
+            [
+                "api",
+                "machine" | "mandrel" | "program" | "timeline" | "sample" | "blocks",
+            ] if self.kind != ResultKind::Winding => Err(Refusal::NotFound),
+            ["api", "plots"] => self
+                .plots
+                .clone()
+                .map(|b| (JSON, b))
+                .ok_or(Refusal::NotFound),
+            ["api", "dressing"] => self
+                .dressing
+                .as_ref()
+                .map(|(_, b)| (JSON, b.clone()))
+                .ok_or(Refusal::NotFound),
+            ["api", "dressing", "sample"] => {
+                let (d, _) = self.dressing.as_ref().ok_or(Refusal::NotFound)?;
+                let t = target
+                    .param("t")
+                    .and_then(|s| s.parse::<f64>().ok())
+                    .filter(|t| t.is_finite())
+                    .ok_or(Refusal::Path)?;
+                Ok((JSON, json(&d.sample(t))))
+            }
+            ["api", "correction"] => self
+                .correction
+                .clone()
+                .map(|b| (JSON, b))
+                .ok_or(Refusal::NotFound),
             ["api", "machine"] => Ok((JSON, self.machine.clone())),
             ["api", "mandrel"] => self
                 .mandrel

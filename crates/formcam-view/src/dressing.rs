@@ -1,0 +1,236 @@
+//! A dressing result (`formcam dress`): the wheel's profile, the contour
+//! before dressing (the profile and its allowance) and after, the
+//! dresser's path per pass, the removal rate and feed per step — and the
+//! program (`program.mpf`) played in its own time, so that the page moves
+//! the dresser along its path (`/api/dressing`, `/api/dressing/sample`).
+
+use std::path::Path;
+
+use formcam_nc::{AxisSpec, Dialect, read_gcode_lines_in};
+use formcam_sim::{FeedRule, Timeline};
+use serde::Serialize;
+use serde_json::{Map, Value};
+
+use crate::ViewError;
+use crate::table::Table;
+
+/// The program the dressing view plays.
+pub const DRESSING_PROGRAM: &str = "program.mpf";
+
+/// A dressing result, read once.
+#[derive(Debug, Clone)]
+pub struct DressingView {
+    timeline: Timeline,
+    body: DressingBody,
+}
+
+/// What `/api/dressing` sends: the drawing and the program's time.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DressingBody {
+    /// The profile (`profile.csv`): `[z, x]`, mm.
+    pub profile: Vec<[f64; 2]>,
+    /// The wheel before dressing (`contour_initial.csv`: the profile offset
+    /// by the allowance, or the given contour).
+    pub initial: Vec<[f64; 2]>,
+    /// The wheel after dressing (`contour_final.csv`).
+    pub final_contour: Vec<[f64; 2]>,
+    /// Per pass (`dresser.csv`): point A's path and the dressing corner.
+    pub passes: Vec<DresserPass>,
+    /// Per step (`mrr.csv`): `z`, removal rate and feed.
+    pub mrr: MrrPlot,
+    /// The program's time, s (its feeds; rapid moves take none).
+    pub duration_s: f64,
+    /// Each block's start, then the program's end, s.
+    pub t: Vec<f64>,
+    /// Point A at the program's start, then at each block's end: `[z, x]`, mm.
+    pub points: Vec<[f64; 2]>,
+    /// Each block's line in the program (1-based).
+    pub lines: Vec<usize>,
+    /// The program's text.
+    pub program: String,
+}
+
+/// One pass of the dresser.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DresserPass {
+    /// The pass's number (1-based).
+    pub pass: usize,
+    /// Point A per path point: `[z, x]`, mm.
+    pub path: Vec<[f64; 2]>,
+    /// The dressing corner's centre relative to point A: `[dz, dx]`, mm.
+    pub corner_offset: [f64; 2],
+    /// The dressing corner's radius, mm (0 when the summary does not say).
+    pub corner_radius: f64,
+}
+
+/// The removal rate and feed per step.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MrrPlot {
+    /// The step's pass (1-based).
+    pub pass: Vec<usize>,
+    /// Where the step ends along the wheel's axis, mm.
+    pub z: Vec<f64>,
+    /// Removal rate, mm²/min of the section.
+    pub mrr: Vec<f64>,
+    /// Feed, mm/min.
+    pub feed: Vec<f64>,
+}
+
+/// The dresser at one time.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DresserSample {
+    /// The time, s.
+    pub t: f64,
+    /// The block running (0-based).
+    pub block: usize,
+    /// Its line in the program (1-based).
+    pub line: usize,
+    /// Point A: `[x, z]` (radial, axial), mm.
+    pub dresser: [f64; 2],
+}
+
+impl DressingView {
+    /// Reads the dressing result in `root` (its `summary`, already read).
+    ///
+    /// # Errors
+    ///
+    /// [`ViewError`] naming the file, the line and the column.
+    pub fn read(root: &Path, summary: &Map<String, Value>) -> Result<Self, ViewError> {
+        let program_path = root.join(DRESSING_PROGRAM);
+        let program = crate::folder::read_text(&program_path)?;
+        let timeline = program_timeline(&program, &program_path)?;
+        let pairs = |name: &str| -> Result<Vec<[f64; 2]>, ViewError> {
+            let t = Table::read(&root.join(name))?;
+            Ok(zip(&t.numbers("z")?, &t.numbers("x")?))
+        };
+        let dresser = Table::read(&root.join("dresser.csv"))?;
+        let mrr = Table::read(&root.join("mrr.csv"))?;
+        let mut t = Vec::with_capacity(timeline.len() + 1);
+        let mut points = Vec::with_capacity(timeline.len() + 1);
+        let mut lines = Vec::with_capacity(timeline.len());
+        for b in timeline.blocks() {
+            if b.index == 0 {
+                points.push([b.from[0], b.from[1]]);
+            }
+            t.push(b.start_s);
+            points.push([b.to[0], b.to[1]]);
+            lines.push(b.line);
+        }
+        t.push(timeline.duration_s());
+        let body = DressingBody {
+            profile: pairs("profile.csv")?,
+            initial: pairs("contour_initial.csv")?,
+            final_contour: pairs("contour_final.csv")?,
+            passes: passes(&dresser, summary)?,
+            mrr: MrrPlot {
+                pass: mrr.numbers("pass")?.iter().map(|p| *p as usize).collect(),
+                z: mrr.numbers("z")?,
+                mrr: mrr.numbers("mrr")?,
+                feed: mrr.numbers("feed")?,
+            },
+            duration_s: timeline.duration_s(),
+            t,
+            points,
+            lines,
+            program,
+        };
+        Ok(Self { timeline, body })
+    }
+
+    /// What `/api/dressing` sends.
+    pub fn body(&self) -> &DressingBody {
+        &self.body
+    }
+
+    /// The program's timeline (axes `Z`, `X`).
+    pub fn timeline(&self) -> &Timeline {
+        &self.timeline
+    }
+
+    /// The dresser at `t` s (clamped to the program): point A moving
+    /// linearly within each block.
+    pub fn sample(&self, t: f64) -> DresserSample {
+        let t = if t.is_finite() {
+            t.clamp(0.0, self.timeline.duration_s())
+        } else {
+            0.0
+        };
+        let block = self.timeline.block_at(t).unwrap_or(0);
+        let at = self.timeline.sample(t);
+        DresserSample {
+            t,
+            block,
+            line: self.body.lines.get(block).copied().unwrap_or(0),
+            dresser: [at[1], at[0]],
+        }
+    }
+}
+
+/// The dressing program (840D, plane G18, axes `Z`, `X`) timed by its own
+/// feeds: from its first point, rapid moves taking no time.
+fn program_timeline(text: &str, path: &Path) -> Result<Timeline, ViewError> {
+    let axes = [AxisSpec::linear("Z"), AxisSpec::linear("X")];
+    let (program, lines) =
+        read_gcode_lines_in(text, &axes, Dialect::Sinumerik840d).map_err(|source| {
+            ViewError::Program {
+                path: path.to_path_buf(),
+                source,
+            }
+        })?;
+    let start = program
+        .blocks
+        .first()
+        .map(|b| b.target.clone())
+        .ok_or_else(|| ViewError::EmptyProgram {
+            path: path.to_path_buf(),
+        })?;
+    Timeline::from_start(
+        &program,
+        &lines,
+        FeedRule::of(Dialect::Sinumerik840d),
+        &start,
+        &[f64::INFINITY; 2],
+    )
+    .map_err(|source| ViewError::Timeline {
+        path: path.to_path_buf(),
+        source: Box::new(source),
+    })
+}
+
+fn zip(a: &[f64], b: &[f64]) -> Vec<[f64; 2]> {
+    a.iter().zip(b).map(|(a, b)| [*a, *b]).collect()
+}
+
+/// The passes of `dresser.csv` in order, each with its corner: the offset
+/// of the corner's centre from point A (the same along a pass) and the
+/// radius from the summary's `passes`.
+fn passes(t: &Table, summary: &Map<String, Value>) -> Result<Vec<DresserPass>, ViewError> {
+    let (z, x) = (t.numbers("z")?, t.numbers("x")?);
+    let (cz, cx) = (t.numbers("corner_z")?, t.numbers("corner_x")?);
+    let pass = t.numbers("pass")?;
+    let radius = |n: usize| {
+        summary
+            .get("passes")
+            .and_then(Value::as_array)
+            .and_then(|p| p.get(n - 1))
+            .and_then(|p| p.get("corner_radius_mm"))
+            .and_then(Value::as_f64)
+            .unwrap_or(0.0)
+    };
+    let mut out: Vec<DresserPass> = Vec::new();
+    for i in 0..z.len() {
+        let n = pass[i] as usize;
+        if out.last().is_none_or(|p| p.pass != n) {
+            out.push(DresserPass {
+                pass: n,
+                path: Vec::new(),
+                corner_offset: [cz[i] - z[i], cx[i] - x[i]],
+                corner_radius: radius(n.max(1)),
+            });
+        }
+        if let Some(p) = out.last_mut() {
+            p.path.push([z[i], x[i]]);
+        }
+    }
+    Ok(out)
+}

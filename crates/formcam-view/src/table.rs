@@ -1,0 +1,129 @@
+//! A CSV table of a result folder (a header row, then rows of cells), read
+//! by column name: the tables the plots, the dressing and the correction
+//! views draw.
+
+use std::path::{Path, PathBuf};
+
+use crate::ViewError;
+
+/// A CSV table: its header and rows, each cell as written.
+#[derive(Debug, Clone)]
+pub struct Table {
+    path: PathBuf,
+    names: Vec<String>,
+    /// Each row's line (1-based) and cells.
+    rows: Vec<(usize, Vec<String>)>,
+}
+
+impl Table {
+    /// Reads the table `text` of the file `path` (named in errors); blank
+    /// lines are passed over.
+    ///
+    /// # Errors
+    ///
+    /// [`ViewError::Table`] for a file without a header.
+    pub fn parse(text: &str, path: &Path) -> Result<Self, ViewError> {
+        let mut lines = text
+            .lines()
+            .enumerate()
+            .filter(|(_, l)| !l.trim().is_empty());
+        let (_, header) = lines.next().ok_or_else(|| ViewError::Table {
+            path: path.to_path_buf(),
+            line: 1,
+            problem: "empty file".into(),
+        })?;
+        let names = header.split(',').map(|s| s.trim().to_string()).collect();
+        let rows = lines
+            .map(|(i, l)| (i + 1, l.split(',').map(|s| s.trim().to_string()).collect()))
+            .collect();
+        Ok(Self {
+            path: path.to_path_buf(),
+            names,
+            rows,
+        })
+    }
+
+    /// Reads the table file `path`.
+    ///
+    /// # Errors
+    ///
+    /// [`ViewError::Read`] or [`ViewError::Table`].
+    pub fn read(path: &Path) -> Result<Self, ViewError> {
+        let text = formcam_files::read_text(path).map_err(|source| ViewError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::parse(&text, path)
+    }
+
+    /// The number of rows.
+    pub fn len(&self) -> usize {
+        self.rows.len()
+    }
+
+    /// Whether the table has no rows.
+    pub fn is_empty(&self) -> bool {
+        self.rows.is_empty()
+    }
+
+    /// Whether the table has the column `name`.
+    pub fn has(&self, name: &str) -> bool {
+        self.names.iter().any(|n| n == name)
+    }
+
+    fn column(&self, name: &str) -> Result<usize, ViewError> {
+        self.names
+            .iter()
+            .position(|n| n == name)
+            .ok_or_else(|| ViewError::Table {
+                path: self.path.clone(),
+                line: 1,
+                problem: format!("no column `{name}`"),
+            })
+    }
+
+    /// The column `name` as finite numbers.
+    ///
+    /// # Errors
+    ///
+    /// [`ViewError::Table`] naming the line and the column for a missing
+    /// column or a cell that is no finite number.
+    pub fn numbers(&self, name: &str) -> Result<Vec<f64>, ViewError> {
+        let c = self.column(name)?;
+        self.rows
+            .iter()
+            .map(|(line, cells)| {
+                cells
+                    .get(c)
+                    .and_then(|s| s.parse::<f64>().ok())
+                    .filter(|v| v.is_finite())
+                    .ok_or_else(|| ViewError::Table {
+                        path: self.path.clone(),
+                        line: *line,
+                        problem: format!("`{name}` is no finite number"),
+                    })
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
+
+    use super::*;
+
+    #[test]
+    fn columns_by_name_and_errors_naming_the_line() {
+        let t = Table::parse("a, b\n1,2\n\n3, 4.5\n", Path::new("t.csv")).unwrap();
+        assert_eq!(t.len(), 2);
+        assert_eq!(t.numbers("b").unwrap(), vec![2.0, 4.5]);
+        assert!(t.has("a") && !t.has("c"));
+        let e = t.numbers("c").unwrap_err().to_string();
+        assert_eq!(e, "t.csv:1: no column `c`");
+        let t = Table::parse("a\n1\nNaN\n", Path::new("t.csv")).unwrap();
+        let e = t.numbers("a").unwrap_err().to_string();
+        assert_eq!(e, "t.csv:3: `a` is no finite number");
+        assert!(Table::parse("\n", Path::new("e.csv")).is_err());
+    }
+}

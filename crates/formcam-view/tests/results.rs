@@ -1,0 +1,236 @@
+//! The plots of a winding result and the dressing and correction results,
+//! as the server answers them for the bundled examples: every series as
+//! long as the table it comes from, velocities that are the blocks' axis
+//! changes over their times, the dresser at each block's end where the
+//! program's words put it, and the correction's map with every point of
+//! the CMM file.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::path::{Path, PathBuf};
+
+use formcam_view::{Page, ResultKind, View};
+use serde_json::Value;
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// The result of the example job `name`, written into a fresh folder.
+fn result(name: &str) -> PathBuf {
+    let job = repo().join("examples").join(name);
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("view-results")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    let run = formcam_run::run_job_file(&job, &dir).unwrap();
+    for f in &run.files {
+        let path = dir.join(&f.name);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, &f.bytes).unwrap();
+    }
+    dir
+}
+
+fn get(view: &View, url: &str) -> Value {
+    let (status, _, body) = view.answer(url);
+    assert_eq!(status, 200, "{url}: {}", String::from_utf8_lossy(&body));
+    serde_json::from_slice(&body).unwrap()
+}
+
+fn numbers(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+/// Data rows of a CSV file.
+fn rows(path: &Path) -> usize {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .filter(|l| !l.trim().is_empty())
+        .count()
+}
+
+#[test]
+fn winding_plots_hold_every_layer_and_the_blocks_velocities() {
+    let dir = result("vessel-layers-840d.toml");
+    let view = View::open(&dir, None, Page::default()).unwrap();
+    assert_eq!(view.kind(), ResultKind::Winding);
+    assert_eq!(get(&view, "/api/kind")["kind"], "winding");
+    let p = get(&view, "/api/plots");
+    let meridian = p["meridian"].as_array().unwrap();
+    assert_eq!(meridian.len(), 3, "three winding layers");
+    for m in meridian {
+        let layer = m["layer"].as_u64().unwrap();
+        let table = dir.join(format!("layer-{layer:02}/path.csv"));
+        let z = numbers(&m["z"]);
+        assert_eq!(z.len(), rows(&table));
+        assert_eq!(numbers(&m["alpha_deg"]).len(), z.len());
+        assert_eq!(numbers(&m["thickness"]).len(), z.len());
+        assert!(z.windows(2).all(|w| w[0] <= w[1]));
+    }
+    let pull = p["pull"].as_array().unwrap();
+    assert!(!pull.is_empty());
+    for u in pull {
+        let layer = u["layer"].as_u64().unwrap();
+        let table = dir.join(format!("layer-{layer:02}/eye.csv"));
+        assert_eq!(numbers(&u["u"]).len(), rows(&table));
+    }
+    let a = &p["axes"];
+    let t = numbers(&a["t"]);
+    let blocks = numbers(&a["block_s"]);
+    assert_eq!(t.len(), blocks.len() + 1);
+    for (k, name) in a["names"].as_array().unwrap().iter().enumerate() {
+        let pos = numbers(&a["position"][k]);
+        let vel = a["velocity"][k].as_array().unwrap();
+        assert_eq!(pos.len(), t.len(), "{name}");
+        assert_eq!(vel.len(), t.len(), "{name}");
+        for b in 0..blocks.len() {
+            assert!((t[b + 1] - t[b] - blocks[b]).abs() < 1e-9);
+            match vel[b].as_f64() {
+                // Per minute: the change over the block's time.
+                Some(v) => {
+                    let change = pos[b + 1] - pos[b];
+                    let want = change / blocks[b] * 60.0;
+                    assert!(
+                        (v - want).abs() <= 1e-9 * want.abs().max(1.0),
+                        "{name} block {b}: {v} vs {want}"
+                    );
+                }
+                None => assert_eq!(blocks[b], 0.0),
+            }
+        }
+    }
+    // The dressing and correction routes are not this result's.
+    assert_eq!(view.answer("/api/dressing").0, 404);
+    assert_eq!(view.answer("/api/correction").0, 404);
+}
+
+/// The `Z`, `X` words of the program line `line` (1-based), modal.
+fn program_points(text: &str) -> Vec<(f64, f64)> {
+    let mut at = (f64::NAN, f64::NAN);
+    let mut out = Vec::new();
+    for line in text.lines() {
+        let code = line.split(';').next().unwrap_or("");
+        for w in code.split_whitespace() {
+            if let Some(v) = w.strip_prefix('Z').and_then(|v| v.parse().ok()) {
+                at.0 = v;
+            } else if let Some(v) = w.strip_prefix('X').and_then(|v| v.parse().ok()) {
+                at.1 = v;
+            }
+        }
+        out.push(at);
+    }
+    out
+}
+
+#[test]
+fn the_dresser_moves_along_the_programs_points_in_its_own_time() {
+    let dir = result("dress-ballscrew-nut.toml");
+    let view = View::open(&dir, None, Page::default()).unwrap();
+    assert_eq!(view.kind(), ResultKind::Dressing);
+    assert_eq!(get(&view, "/api/kind")["kind"], "dressing");
+    assert_eq!(view.answer("/api/machine").0, 404);
+    assert_eq!(view.answer("/api/plots").0, 404);
+    let d = get(&view, "/api/dressing");
+    assert_eq!(
+        d["profile"].as_array().unwrap().len(),
+        rows(&dir.join("profile.csv"))
+    );
+    let path_points: usize = d["passes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["path"].as_array().unwrap().len())
+        .sum();
+    assert_eq!(path_points, rows(&dir.join("dresser.csv")));
+    assert_eq!(
+        d["mrr"]["z"].as_array().unwrap().len(),
+        rows(&dir.join("mrr.csv"))
+    );
+    // The program's own time against the dressing's: within the rounding
+    // of the written program (0.001 mm on steps of 0.01 mm, the feeds'
+    // decimals), about 0.2 % here.
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let want = summary["dressing_time_s"].as_f64().unwrap();
+    let duration = d["duration_s"].as_f64().unwrap();
+    assert!(
+        (duration - want).abs() < 1e-2 * want,
+        "{duration} s vs {want} s"
+    );
+    // At each block's end point A stands where the program's words put it,
+    // half way between the block's ends at half its time.
+    let text = std::fs::read_to_string(dir.join("program.mpf")).unwrap();
+    let words = program_points(&text);
+    let t = numbers(&d["t"]);
+    let lines = d["lines"].as_array().unwrap();
+    let mut checked = 0;
+    for b in (0..lines.len()).step_by(29).chain([lines.len() - 1]) {
+        let line = lines[b].as_u64().unwrap() as usize;
+        let (z, x) = words[line - 1];
+        let s = get(&view, &format!("/api/dressing/sample?t={}", t[b + 1]));
+        let [sx, sz] = [
+            s["dresser"][0].as_f64().unwrap(),
+            s["dresser"][1].as_f64().unwrap(),
+        ];
+        if t[b + 1] > t[b] {
+            assert!(
+                (sz - z).abs() < 1e-6 && (sx - x).abs() < 1e-6,
+                "block {b}: {s}"
+            );
+            checked += 1;
+            if b > 0 {
+                let (z0, x0) = words[lines[b - 1].as_u64().unwrap() as usize - 1];
+                let m = get(
+                    &view,
+                    &format!("/api/dressing/sample?t={}", 0.5 * (t[b] + t[b + 1])),
+                );
+                let mz = m["dresser"][1].as_f64().unwrap();
+                let mx = m["dresser"][0].as_f64().unwrap();
+                assert!((mz - 0.5 * (z0 + z)).abs() < 1e-6, "block {b}: {m}");
+                assert!((mx - 0.5 * (x0 + x)).abs() < 1e-6, "block {b}: {m}");
+                assert_eq!(m["line"].as_u64().unwrap() as usize, line, "block {b}");
+            }
+        }
+    }
+    assert!(checked > 10, "{checked}");
+    assert_eq!(view.answer("/api/dressing/sample?t=x").0, 400);
+}
+
+#[test]
+fn the_correction_map_holds_every_measured_point() {
+    let dir = result("correct-mould.toml");
+    let view = View::open(&dir, None, Page::default()).unwrap();
+    assert_eq!(view.kind(), ResultKind::Correction);
+    let c = get(&view, "/api/correction");
+    let cmm = repo().join("examples/correct/cmm.csv");
+    let n = rows(&cmm);
+    for k in ["x", "y", "z", "deviation", "section"] {
+        assert_eq!(c[k].as_array().unwrap().len(), n, "{k}");
+    }
+    let sections = c["sections"].as_array().unwrap();
+    assert_eq!(sections.len(), 9);
+    let counted: u64 = sections.iter().map(|s| s["points"].as_u64().unwrap()).sum();
+    assert_eq!(counted as usize, n);
+    // The largest |deviation| is the report's.
+    let worst = numbers(&c["deviation"])
+        .iter()
+        .fold(0.0f64, |m, d| m.max(d.abs()));
+    let reported = c["report"]["max_deviation_mm"].as_f64().unwrap();
+    assert!((worst - reported).abs() < 1e-9, "{worst} vs {reported}");
+}
+
+#[test]
+fn a_folder_without_summary_or_correction_report_is_no_result() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("view-results/empty");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let e = View::open(&dir, None, Page::default()).unwrap_err();
+    assert!(e.to_string().contains("not a result folder"), "{e}");
+}

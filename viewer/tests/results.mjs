@@ -1,0 +1,139 @@
+// Drives the 2-D parts of the page `formcam view` serves in headless
+// Chromium (Debian's, through playwright-core): a winding result's plots,
+// a dressing result's animation, a correction result's deviation map. It
+// writes what it saw as JSON (the Rust test asserts on it) and screenshots.
+//
+//   node viewer/tests/results.mjs KIND URL SCREENSHOT_DIR OUT_JSON
+//   KIND: plots | dressing | correction
+import { mkdirSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { chromium } from 'playwright-core';
+
+const [kind, url, shots, out] = process.argv.slice(2);
+if (!kind || !url || !shots || !out) {
+  console.error('usage: node results.mjs plots|dressing|correction URL SCREENSHOT_DIR OUT_JSON');
+  process.exit(2);
+}
+mkdirSync(shots, { recursive: true });
+
+const browser = await chromium.launch({
+  executablePath: process.env.FORMCAM_CHROMIUM ?? '/usr/bin/chromium',
+  headless: true,
+  args: ['--no-sandbox', '--disable-background-networking', '--use-angle=swiftshader',
+    '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
+});
+const errors = [];
+let step = 'launch';
+const watchdog = setTimeout(() => {
+  errors.push(`driver: no answer from the page within 240 s (at: ${step})`);
+  writeFileSync(out, JSON.stringify({ errors }, null, 1));
+  process.exit(1);
+}, 240_000);
+
+/** Colours (sampled) and a hash of each canvas matching `selector`. */
+const canvases = (page, selector) => page.evaluate((sel) => [...document.querySelectorAll(sel)].map((c) => {
+  const d = document.createElement('canvas');
+  d.width = c.width;
+  d.height = c.height;
+  const x = d.getContext('2d');
+  x.drawImage(c, 0, 0);
+  const data = x.getImageData(0, 0, d.width, d.height).data;
+  const colours = new Set();
+  let hash = 0;
+  for (let i = 0; i < data.length; i += 4) {
+    const v = (data[i] << 16) | (data[i + 1] << 8) | data[i + 2];
+    if (i % 28 === 0) colours.add(v);
+    hash = (Math.imul(hash, 31) + v) >>> 0;
+  }
+  return { width: c.width, height: c.height, colours: colours.size, hash };
+}), selector);
+
+const frames = (page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+
+try {
+  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  page.setDefaultTimeout(120_000);
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
+  page.on('pageerror', (e) => errors.push(`page: ${e}`));
+  page.on('requestfailed', (r) => errors.push(`request failed: ${r.url()}`));
+  page.on('request', (r) => { if (!r.url().startsWith(url)) errors.push(`outside request: ${r.url()}`); });
+  step = 'open';
+  await page.goto(url);
+  await page.evaluate(() => window.formcam.ready);
+  const report = { kind, errors };
+
+  if (kind === 'plots') {
+    step = 'plots';
+    await page.click('#plots-toggle');
+    await page.evaluate(() => window.formcamPlots.open());
+    const duration = await page.evaluate(() => window.formcam.duration_s);
+    await page.evaluate((t) => window.formcam.seek(t), 0.4 * duration);
+    await frames(page);
+    report.series = await page.evaluate(() => window.formcamPlots.series());
+    // What the server sent, counted the same way.
+    report.expected = await page.evaluate(async () => {
+      const b = await (await fetch('/api/plots')).json();
+      const e = {};
+      if (b.meridian.length) {
+        e.alpha = b.meridian.map((m) => m.alpha_deg.length);
+        e.thickness = b.meridian.map((m) => m.thickness.length);
+      }
+      if (b.pull.length) e.pull = b.pull.map((p) => p.u.length);
+      if (b.axes) {
+        b.axes.names.forEach((n, k) => {
+          e[`axis ${n}`] = [b.axes.position[k].length, b.axes.velocity[k].filter((v) => v !== null).length];
+        });
+        e.blocks = [b.axes.block_s.length];
+      }
+      return e;
+    });
+    report.canvases = await canvases(page, '#plots-panel canvas');
+    await page.screenshot({ path: join(shots, 'plots.png') });
+    await page.evaluate(() => { document.querySelector('#plots-panel').scrollTop = 1e6; });
+    await frames(page);
+    await page.screenshot({ path: join(shots, 'plots-axes.png') });
+  } else if (kind === 'dressing') {
+    step = 'dressing';
+    const duration = await page.evaluate(() => window.formcam.duration_s);
+    const server = (t) => page.evaluate(async (tt) => (await (await fetch(`/api/dressing/sample?t=${tt}`)).json()), t);
+    report.duration_s = duration;
+    report.start = await page.evaluate(() => window.formcam.state());
+    report.first = await canvases(page, '#app2d canvas.view2d');
+    await page.screenshot({ path: join(shots, 'dressing-start.png') });
+    report.seeks = [];
+    for (const f of [0.2, 0.45, 0.8]) {
+      await page.evaluate((t) => window.formcam.seek(t), f * duration);
+      const shown = await page.evaluate(() => window.formcam.state());
+      report.seeks.push({ shown, server: await server(shown.time_s) });
+    }
+    report.after = await canvases(page, '#app2d canvas.view2d');
+    await page.screenshot({ path: join(shots, 'dressing-seek.png') });
+    // Playing: the time and the dresser move on by themselves.
+    step = 'play';
+    await page.evaluate((t) => window.formcam.seek(t), 0.1 * duration);
+    const before = await page.evaluate(() => window.formcam.state());
+    await page.evaluate(() => window.formcam.play(5));
+    await page.waitForTimeout(1500);
+    const playing = await page.evaluate(() => window.formcam.state());
+    await page.screenshot({ path: join(shots, 'dressing-playing.png') });
+    await page.evaluate(() => window.formcam.pause());
+    report.play = { before, playing };
+    report.mrr = await canvases(page, '#app2d .mrr canvas');
+  } else if (kind === 'correction') {
+    step = 'correction';
+    await frames(page);
+    report.state = await page.evaluate(() => window.formcam.state());
+    report.map = await canvases(page, '#app2d canvas.view2d');
+    report.sections = await canvases(page, '#app2d .sections canvas');
+    await page.screenshot({ path: join(shots, 'correction.png') });
+  } else {
+    errors.push(`driver: unknown kind ${kind}`);
+  }
+  writeFileSync(out, JSON.stringify(report, null, 1));
+} catch (e) {
+  errors.push(`driver: ${e}`);
+  writeFileSync(out, JSON.stringify({ errors }, null, 1));
+} finally {
+  clearTimeout(watchdog);
+  await browser.close();
+}

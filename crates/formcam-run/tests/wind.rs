@@ -204,7 +204,7 @@ fn acceleration_limits_lengthen_the_program() {
         .replace("# acceleration = true", "acceleration = false #");
     let free = winds("no-acceleration", &job);
     assert_eq!(free["program_time_s"], free["program_time_global_s"]);
-    assert_eq!(free["program_time_global_s"], kept["program_time_global_s"]);
+    assert!(free["program_time_s"].as_f64().unwrap() < with);
 }
 
 #[test]

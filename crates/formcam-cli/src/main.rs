@@ -55,8 +55,9 @@ const MAX_INPUT_MB: u64 = 1024 * 1024;
 
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Filament winding: `formcam wind JOB -o OUT` writes the whole program;
-    /// the subcommands stop after a stage.
+    /// Filament winding: `formcam wind JOB -o OUT` writes the whole program
+    /// and checks it on its machine (exit status 3 when a check fails); the
+    /// subcommands stop after a stage.
     #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
     Wind {
         #[command(subcommand)]
@@ -77,6 +78,11 @@ enum Command {
         /// TOML jobs use `[checks] allow`.
         #[arg(long, value_name = "CHECKS", value_delimiter = ',')]
         allow: Vec<wind::AllowCheck>,
+        /// Do not check the written program on its machine (by default it is
+        /// read back and checked as `formcam check` does: check.json, exit
+        /// status 3 when a check fails).
+        #[arg(long)]
+        no_check: bool,
     },
     /// Mould correction: `formcam correct --measurements cmm.csv --program
     /// mould.nc -o corrected.nc`, or `formcam correct JOB.toml -o OUTDIR` (a
@@ -131,6 +137,7 @@ enum Command {
         machine: Option<PathBuf>,
     },
     /// Runs every bundled example job and writes its outputs (the main job).
+    /// Exit status 3 when the check of a winding program it wrote fails.
     Demo {
         /// Folder of example jobs.
         #[arg(long, default_value = "examples")]
@@ -212,6 +219,7 @@ fn main() -> ExitCode {
             output: whole_out,
             eye_clearance,
             allow,
+            no_check,
         } => {
             let picked = match (what, whole, whole_out) {
                 (Some(WindCommand::Path { job, output }), ..) => (job, output, Stage::Path),
@@ -225,19 +233,29 @@ fn main() -> ExitCode {
                     )
                     .exit(),
             };
-            match picked {
+            let wound = match picked {
                 (job, output, Stage::Program) if job.extension().is_some_and(|e| e == "wind") => {
                     wind::run_wind_file(
                         &job,
                         &output,
                         eye_clearance.unwrap_or(formcam_program::EYE_CLEARANCE_MM),
                         &allow,
+                        no_check,
                     )
-                    .map(|s| println!("{s}"))
                 }
                 _ if !allow.is_empty() => Err(CliError::AllowForToml),
                 _ if eye_clearance.is_some() => Err(CliError::EyeClearanceForToml),
-                (job, output, stage) => wind::run(&job, &output, stage).map(|s| println!("{s}")),
+                (job, output, stage) => wind::run(&job, &output, stage, no_check),
+            };
+            match wound {
+                Ok(w) => {
+                    println!("{}", w.line);
+                    if !w.clean {
+                        return ExitCode::from(3);
+                    }
+                    Ok(())
+                }
+                Err(e) => Err(e),
             }
         }
         Command::Machine {
@@ -258,7 +276,10 @@ fn main() -> ExitCode {
             None => correct::run(&args).map(|s| println!("{s}")),
         },
         Command::Dress { job, output } => dress::run(&job, &output).map(|s| println!("{s}")),
-        Command::Demo { examples, output } => wind::run_demo(&examples, &output),
+        Command::Demo { examples, output } => match wind::run_demo(&examples, &output) {
+            Ok(false) => return ExitCode::from(3),
+            other => other.map(|_| ()),
+        },
         Command::Check {
             program,
             machine,

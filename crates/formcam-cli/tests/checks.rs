@@ -100,7 +100,18 @@ fn a_limit_is_a_check_that_can_be_accepted() {
         &["wind"],
         &format!("{job}\n[checks]\nallow = [\"limits\"]\n"),
     );
-    ok("checks", &st);
+    // Written, and its check on the machine says what the job accepted:
+    // exit status 3, the position limit of X in `check.json`.
+    assert_eq!(st.status.code(), Some(3), "{}", common::stderr(&st));
+    let report = common::json(out.join("check.json"));
+    assert!(
+        report["violations"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|v| v["kind"] == "position" && v["axis"] == "X"),
+        "{report}"
+    );
     let s = summary(&out);
     assert_eq!(s["checks_accepted"], serde_json::json!(["limits"]));
     let x = s["axis_ranges"]

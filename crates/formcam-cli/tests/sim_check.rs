@@ -2,9 +2,8 @@
 //! line, the exit status (0 clean, 3 a check failed, 2 bad input), the
 //! report written only where asked and never over an input, and every
 //! winding program the demo writes checked against its machine: within
-//! every position, velocity and velocity-jump limit. Their acceleration is
-//! not: the examples leave `[motion] acceleration` off, so the planner does
-//! not keep the machines' `a_max`, and the check says so.
+//! every position, velocity, velocity-jump and acceleration limit (the
+//! planner keeps the machines' `a_max` by default).
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
@@ -118,7 +117,7 @@ fn machine_of(job: &Path) -> Option<PathBuf> {
 }
 
 #[test]
-fn every_program_the_demo_writes_keeps_its_machines_limits_but_acceleration() {
+fn every_program_the_demo_writes_keeps_its_machines_limits() {
     let dir = scratch("demo");
     let out = dir.join("out");
     let o = demo(&examples(), &out);
@@ -152,13 +151,8 @@ fn every_program_the_demo_writes_keeps_its_machines_limits_but_acceleration() {
                 .iter()
                 .map(|v| v["kind"].as_str().unwrap())
                 .collect();
-            assert!(
-                kinds.iter().all(|k| *k == "acceleration"),
-                "{name}: {}",
-                stdout(&o)
-            );
-            let status = if kinds.is_empty() { 0 } else { 3 };
-            assert_eq!(o.status.code(), Some(status), "{name}: {}", stderr(&o));
+            assert!(kinds.is_empty(), "{name}: {}", stdout(&o));
+            assert_eq!(o.status.code(), Some(0), "{name}: {}", stderr(&o));
             checked.push(name.clone());
         }
     }

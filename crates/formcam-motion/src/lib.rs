@@ -13,16 +13,24 @@
 //!   program) re-timed across the joins, from rest to rest, each part's times
 //!   kept as caps; [`ramp_pieces`] first cuts the long blocks at the joins so
 //!   that the velocity can ramp there in short pieces.
+//! * [`with_acceleration`] and [`sequence_with_acceleration`] — the axes'
+//!   acceleration limits on top (a circuit as a cycle, a whole program from
+//!   rest to rest): blocks slowed until every velocity change ramps within
+//!   half of each neighbouring block.
 
+mod acceleration;
 mod blocks;
 mod error;
 mod ramps;
 mod times;
 
+pub use acceleration::{
+    check_acceleration, check_sequence_acceleration, sequence_with_acceleration, with_acceleration,
+};
 pub use blocks::{Deviation, Tolerance, fit_blocks};
 pub use error::{MotionError, SetupStage, SolverFault, TrajectoryFault};
 pub use ramps::ramp_pieces;
 pub use times::{
-    AxisLimits, Timing, check_acceleration, check_timing, deltas, global, global_by_cone,
-    join_times, pairwise, preliminary_times, with_acceleration,
+    AxisLimits, Timing, check_timing, deltas, global, global_by_cone, join_times, pairwise,
+    preliminary_times,
 };

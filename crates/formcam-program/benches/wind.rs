@@ -1,7 +1,8 @@
 //! The winding pipeline of whole jobs: a single-layer tube on the shipped
 //! 2-axis winder, and the same tube wound in four layers (hoop, helical,
 //! hoop, helical), whose layers' eye, axes and blocks run in parallel; and
-//! the speed case: a 3-layer vessel with 10^6 path points.
+//! the speed case: a 3-layer vessel with 10^6 path points (planned with and
+//! without the acceleration limits).
 
 #![allow(clippy::expect_used, missing_docs)]
 
@@ -120,6 +121,16 @@ fn vessel(c: &mut Criterion) {
             text.len()
         });
     });
+    // The planner without the acceleration limits (`[motion] acceleration =
+    // false`): its times before they became the default.
+    let free = WindJob::from_toml(&format!("{VESSEL}\n[motion]\nacceleration = false\n"), here)
+        .expect("job");
+    g.bench_function(
+        "vessel, 3 layers, 1e6 points: plan, acceleration off",
+        |b| {
+            b.iter(|| plan_program(black_box(&free)).expect("plan"));
+        },
+    );
     g.finish();
 }
 

@@ -6,8 +6,9 @@ use formcam_machine::AxisTrack;
 use formcam_machine::Machine;
 use formcam_machine::Target;
 use formcam_motion::{
-    AxisLimits, Deviation, Timing, Tolerance, check_acceleration, check_timing, deltas, fit_blocks,
-    global, join_times, pairwise, preliminary_times, ramp_pieces, with_acceleration,
+    AxisLimits, Deviation, Timing, Tolerance, check_acceleration, check_sequence_acceleration,
+    check_timing, deltas, fit_blocks, global, join_times, pairwise, preliminary_times, ramp_pieces,
+    sequence_with_acceleration, with_acceleration,
 };
 use formcam_nc::{AxisSpec, Block, Feed, Program};
 
@@ -182,8 +183,8 @@ pub fn layer_blocks(
         Times::Pairwise => &pw,
     };
     let ramped;
-    let chosen: &Timing = if motion.acceleration.unwrap_or(false) {
-        let a_max: Vec<f64> = m.axes.iter().map(|a| a.a_max).collect();
+    let chosen: &Timing = if keeps_acceleration(motion) {
+        let a_max = planned_a_max(m);
         ramped = with_acceleration(&d, chosen, &limits, &a_max).map_err(limit_err)?;
         if let Some(&(b, k, e)) = check_acceleration(&d, &ramped.times, &a_max).first() {
             violated.push(Violated {
@@ -248,6 +249,31 @@ pub fn layer_blocks(
         carry: vec![0.0; w],
         violated,
     })
+}
+
+/// How far below each axis's `a_max` the planner keeps its velocity changes
+/// (relative): the written program's block times differ from the planned
+/// ones by the rounding of `F` and of the axis words, which the check of
+/// the written text (`formcam check`) allows in the velocities but not in
+/// the time an acceleration has: 0.1 % covers a `G93` block of up to two
+/// minutes (`F = 60 / t` to 3 decimals) and a per-minute block (Marlin,
+/// CLDATA) whose travel is at least a millimetre.
+pub const ACCELERATION_MARGIN: f64 = 1e-3;
+
+/// Whether the job's block times keep the axes' acceleration limits: unless
+/// `[motion] acceleration = false`.
+pub fn keeps_acceleration(motion: &MotionJob) -> bool {
+    motion.acceleration.unwrap_or(true)
+}
+
+/// Each axis's acceleration limit as the planner keeps it (internal units
+/// per s², `inf` where the machine gives none): `a_max` less
+/// [`ACCELERATION_MARGIN`].
+pub fn planned_a_max(m: &Machine) -> Vec<f64> {
+    m.axes
+        .iter()
+        .map(|a| a.a_max * (1.0 - ACCELERATION_MARGIN))
+        .collect()
 }
 
 /// The machine's axis limits for the block times.
@@ -424,8 +450,25 @@ pub fn assemble(
     let d = program_deltas(m, from.as_deref(), &pending_blocks);
     let t_star: Vec<f64> = pending_blocks.iter().map(|b| b.t_star).collect();
     let cap: Vec<f64> = pending_blocks.iter().map(|b| b.cap).collect();
-    let joined = join_times(&d, &t_star, &cap, &limits)?;
+    let mut joined = join_times(&d, &t_star, &cap, &limits)?;
     let mut program_violated = Vec::new();
+    if keeps_acceleration(motion) {
+        // The joins' ramps and the moves between layers, slowed where a
+        // velocity change breaks an acceleration limit.
+        let a_max = planned_a_max(m);
+        joined = sequence_with_acceleration(&d, &joined, &limits, &a_max)?;
+        if let Some(&(b, k, e)) = check_sequence_acceleration(&d, &joined.times, &a_max).first() {
+            program_violated.push(Violated {
+                check: Check::Acceleration,
+                layer: format!("layer {}", pending_blocks.get(b).map_or(0, |p| p.layer)),
+                detail: format!(
+                    "break the acceleration limit of axis {} in block {} of the program by {e:.3e}",
+                    m.axes[k].name,
+                    b + 1
+                ),
+            });
+        }
+    }
     if let Some((b, k, e)) = timing_from_rest(&d, &joined.times, &limits) {
         program_violated.push(Violated {
             check: Check::Timing,

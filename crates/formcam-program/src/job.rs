@@ -160,9 +160,10 @@ pub struct MotionJob {
     /// Which block times the program uses.
     #[serde(default)]
     pub times: Times,
-    /// Also keep the machine's acceleration limits (`a_max_*` of its axes):
+    /// Keep the machine's acceleration limits (`a_max_*` of its axes):
     /// neighbouring blocks slowed until each velocity change can ramp within
-    /// half of each block (default false).
+    /// half of each block (default true; `false` keeps only the velocity and
+    /// velocity-jump limits).
     pub acceleration: Option<bool>,
 }
 
@@ -514,8 +515,8 @@ pub const MOTION: Table = Table {
             Kind::Boolean,
             Unit::None,
             None,
-            Given::Value(Value::Boolean(false)),
-            "also keep the axes' `a_max`",
+            Given::Value(Value::Boolean(true)),
+            "keep the axes' `a_max` too (`false`: only the velocity and jump limits)",
         ),
     ],
 };

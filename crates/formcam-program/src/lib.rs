@@ -16,7 +16,10 @@ mod post;
 mod size;
 mod windfile;
 
-pub use blocks::{Assembled, LayerBlocks, TimedBlock, axis_limits, nc};
+pub use blocks::{
+    ACCELERATION_MARGIN, Assembled, LayerBlocks, TimedBlock, axis_limits, keeps_acceleration, nc,
+    planned_a_max,
+};
 pub use checks::{Check, ChecksJob, Violated};
 pub use error::{ProgramError, WindFileError, in_layer};
 pub use job::{

@@ -1,13 +1,13 @@
 //! Block times of whole multi-layer jobs: the global times are never slower
 //! than the pairwise ones, and the whole program's blocks, the joins between
-//! layers included, keep the machine's velocity and jump limits.
+//! layers included, keep the machine's velocity, jump and acceleration limits.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use formcam_machine::Machine;
-use formcam_motion::check_timing;
+use formcam_motion::{check_sequence_acceleration, check_timing};
 use formcam_program::{
-    Assembled, EYE_CLEARANCE_MM, ProgramError, WindJob, axis_limits, plan_program,
+    Assembled, EYE_CLEARANCE_MM, ProgramError, WindJob, axis_limits, plan_program, planned_a_max,
 };
 use formcam_winding::job::LayerKind;
 
@@ -38,7 +38,8 @@ fn wind(job: &str) -> Option<Outcome> {
     };
     let program = p.program.as_ref().unwrap();
     check_program(program, &j.machine.as_ref().unwrap().machine);
-    assert_eq!(program.time_s, program.time_global_s);
+    // The acceleration limits (kept by default) only lengthen the times.
+    assert!(program.time_s >= program.time_global_s);
     Some(Outcome {
         blocks: program.blocks.len(),
         global: program.time_global_s,
@@ -71,6 +72,11 @@ fn check_program(p: &Assembled, machine: &Machine) {
         t.push(b.t * (1.0 + 1e-8));
         prev = b.target.clone();
     }
+    // Every velocity change ramps within the acceleration limits too.
+    let plain: Vec<f64> = p.blocks.iter().map(|b| b.t).collect();
+    let a_max = planned_a_max(machine);
+    let broken = check_sequence_acceleration(&d, &plain, &a_max);
+    assert!(broken.is_empty(), "{:?}", &broken[..broken.len().min(3)]);
     d.extend(std::iter::repeat_n(0.0, w));
     t.push(1.0);
     let broken = check_timing(&d, &t, &limits);

@@ -269,6 +269,7 @@ fn correct_to(
             line,
             warnings: Vec::new(),
             inputs: vec![job.measurements.clone(), job.program.clone()],
+            violations: None,
         },
         report,
     ))
@@ -510,6 +511,7 @@ pub fn correct_simulate_with(
         line: loop_line(out_dir, &result),
         warnings: Vec::new(),
         inputs: vec![path.to_path_buf()],
+        violations: None,
     })
 }
 

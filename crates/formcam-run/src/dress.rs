@@ -115,6 +115,7 @@ pub fn dress_text_with(
         line,
         warnings,
         inputs,
+        violations: None,
     })
 }
 

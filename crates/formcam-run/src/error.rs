@@ -73,6 +73,15 @@ pub enum RunError {
         /// What failed.
         source: Box<formcam_program::ProgramError>,
     },
+    /// The program a winding run wrote could not be read back for its
+    /// check (the job file named).
+    #[error("{}: checking the written program: {source}", path.display())]
+    Check {
+        /// The job file.
+        path: PathBuf,
+        /// What failed.
+        source: Box<formcam_sim::SimError>,
+    },
     /// `summary.json` could not be written.
     #[error("summary.json: {source}")]
     Summary {

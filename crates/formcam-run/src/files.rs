@@ -39,6 +39,10 @@ pub struct RunOutput {
     /// meridian, eye curve, template, measurements, program, contour), as
     /// the run opened them; the writer refuses an output on any of them.
     pub inputs: Vec<PathBuf>,
+    /// How many violations the check of the written program found (one per
+    /// kind and axis, as `formcam check` counts them; its report is the
+    /// run's `check.json`); `None` when no program was checked.
+    pub violations: Option<usize>,
 }
 
 impl RunOutput {

@@ -115,6 +115,7 @@ pub fn dressing_for(path: &Path, out: &Path, run: RunOutput) -> RunOutput {
         line: format!("{} -> {}", run.line, out.display()),
         files: run.files,
         inputs: run.inputs,
+        violations: run.violations,
     }
 }
 
@@ -178,6 +179,7 @@ mod tests {
             line: "dressed".into(),
             warnings: vec!["wheel.r: small".into()],
             inputs: Vec::new(),
+            violations: None,
         };
         let shown = dressing_for(Path::new("d.toml"), Path::new("out/d"), run);
         assert_eq!(

@@ -29,4 +29,7 @@ pub use job::{
     JobKind, demo, demo_folder, dressing_for, run_job_file, run_job_file_with, run_job_text,
     run_job_text_with,
 };
-pub use wind::{wind, wind_file, wind_file_with, wind_furthest, wind_furthest_with, wind_with};
+pub use wind::{
+    ProgramCheck, wind, wind_checked_with, wind_file, wind_file_checked_with, wind_file_with,
+    wind_furthest, wind_furthest_with, wind_with,
+};

@@ -3,10 +3,16 @@
 //! outputs, `summary.json` and the plots — and the line that says what was
 //! done. A single-layer job writes its layer's outputs as its own; a
 //! multi-layer job (and a `.wind` document) writes them per layer.
+//!
+//! A run that writes a program then checks it on its machine as `formcam
+//! check` would, from the written text (the program read back, each block
+//! timed by its own feed): `check.json` is the report, the line says
+//! `checked: clean` or the violations, and [`RunOutput::violations`] their
+//! count. [`ProgramCheck::Off`] skips it.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use formcam_machine::AxisTrack;
 use formcam_machine::BandPassed;
@@ -22,8 +28,20 @@ use serde_json::{Map, Value, json};
 
 use crate::{ResultFile, RunError, RunOutput};
 
+/// Whether a winding run checks the program it wrote (`formcam check` on
+/// its text, on the job's machine) before it reports.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum ProgramCheck {
+    /// The written program read back and checked: `check.json`, the line's
+    /// verdict, [`RunOutput::violations`].
+    #[default]
+    On,
+    /// No check (`formcam wind --no-check`).
+    Off,
+}
+
 /// `formcam wind [path|eye|axes] JOB -o OUT`: the job at `job` run up to
-/// `stage`; `out` is only named in the line.
+/// `stage`; `out` is only named in the line (and in the check's report).
 pub fn wind(job: &Path, out: &Path, stage: Stage) -> Result<RunOutput, RunError> {
     wind_with(job, out, stage, &Silent)
 }
@@ -36,9 +54,20 @@ pub fn wind_with(
     stage: Stage,
     progress: &dyn Progress,
 ) -> Result<RunOutput, RunError> {
+    wind_checked_with(job, out, stage, ProgramCheck::On, progress)
+}
+
+/// [`wind_with`], checking the written program or not (`check`).
+pub fn wind_checked_with(
+    job: &Path,
+    out: &Path,
+    stage: Stage,
+    check: ProgramCheck,
+    progress: &dyn Progress,
+) -> Result<RunOutput, RunError> {
     let t0 = Instant::now();
     let wj = read_job(job)?;
-    let mut output = run(job, out, &wj, stage, t0, progress)?;
+    let mut output = run(job, out, &wj, stage, check, t0, progress)?;
     output.inputs = job_inputs(job, &wj);
     Ok(output)
 }
@@ -57,7 +86,8 @@ pub fn wind_furthest_with(
 ) -> Result<RunOutput, RunError> {
     let t0 = Instant::now();
     let wj = read_job(job)?;
-    let mut output = run(job, out, &wj, wj.furthest_stage(), t0, progress)?;
+    let stage = wj.furthest_stage();
+    let mut output = run(job, out, &wj, stage, ProgramCheck::On, t0, progress)?;
     output.inputs = job_inputs(job, &wj);
     Ok(output)
 }
@@ -104,6 +134,18 @@ pub fn wind_file_with(
     allow: &[Check],
     progress: &dyn Progress,
 ) -> Result<RunOutput, RunError> {
+    wind_file_checked_with(path, out, eye_clearance, allow, ProgramCheck::On, progress)
+}
+
+/// [`wind_file_with`], checking the written program or not (`check`).
+pub fn wind_file_checked_with(
+    path: &Path,
+    out: &Path,
+    eye_clearance: f64,
+    allow: &[Check],
+    check: ProgramCheck,
+    progress: &dyn Progress,
+) -> Result<RunOutput, RunError> {
     let t0 = Instant::now();
     let text = formcam_files::read_text(path).map_err(|e| RunError::Read {
         path: path.to_path_buf(),
@@ -112,13 +154,17 @@ pub fn wind_file_with(
     let wj = WindJob::from_wind(&text, eye_clearance, allow)
         .map_err(|e| RunError::wind(path, e))?
         .named(path);
-    let mut output = run(path, out, &wj, Stage::Program, t0, progress)?;
+    let mut output = run(path, out, &wj, Stage::Program, check, t0, progress)?;
     output.inputs = vec![path.to_path_buf()];
     if let Some(w) = &wj.wind_file {
-        let _ = write!(
-            output.line,
-            "; eye {:.1} mm from the axis ({:.1} mm over the mandrel)",
-            w.eye_radius_mm, w.eye_clearance_mm
+        // Before the check's verdict, which ends the line.
+        let at = output.line.find("; checked").unwrap_or(output.line.len());
+        output.line.insert_str(
+            at,
+            &format!(
+                "; eye {:.1} mm from the axis ({:.1} mm over the mandrel)",
+                w.eye_radius_mm, w.eye_clearance_mm
+            ),
         );
     }
     Ok(output)
@@ -136,12 +182,14 @@ fn read_job(path: &Path) -> Result<WindJob, RunError> {
         .named(path))
 }
 
-/// Plans `job` up to `stage` and lays out its files.
+/// Plans `job` up to `stage`, lays out its files and checks the program
+/// written (unless `check` is off).
 fn run(
     path: &Path,
     out: &Path,
     job: &WindJob,
     stage: Stage,
+    check: ProgramCheck,
     t0: Instant,
     progress: &dyn Progress,
 ) -> Result<RunOutput, RunError> {
@@ -172,6 +220,10 @@ fn run(
         }
         None => None,
     };
+    let checked = match (&program, check) {
+        (Some((_, text)), ProgramCheck::On) => check_program(path, out, job, &wound, text)?,
+        _ => None,
+    };
     progress.checkpoint(Step::new(Phase::Files, 0, 1))?;
     let mut output = if job.is_layered() {
         layered(job, &wound, program, each)?
@@ -179,12 +231,25 @@ fn run(
         single(path, job, &wound, program)?
     };
     progress.checkpoint(Step::new(Phase::Files, 1, 1))?;
+    let check_time = checked.as_ref().map_or(Duration::ZERO, |c| c.time);
     let _ = write!(
         output.line,
         ", {:.1} ms -> {}",
-        t0.elapsed().as_secs_f64() * 1e3,
+        t0.elapsed().saturating_sub(check_time).as_secs_f64() * 1e3,
         out.display()
     );
+    if let Some(c) = checked {
+        output.line.push_str(&c.verdict());
+        output.violations = Some(c.report.violations.len());
+        output.files.push(ResultFile::new("check.json", c.json()?));
+    } else if check == ProgramCheck::On
+        && program_written(&output)
+        && matches!(wound.post, Post::Template { .. })
+    {
+        output
+            .line
+            .push_str("; not checked: a user template's program cannot be read back");
+    }
     if let Some(l) = wound.layers.first().and_then(WoundLayer::wound)
         && !job.is_layered()
     {
@@ -198,6 +263,74 @@ fn run(
         .map(|w| format!("{}: {w}", path.display()))
         .collect();
     Ok(output)
+}
+
+/// Whether a run's files hold a program.
+fn program_written(output: &RunOutput) -> bool {
+    output.files.iter().any(|f| f.name.starts_with("program."))
+}
+
+/// The check of a written program: its report and how long it took.
+struct Checked {
+    report: formcam_sim::Report,
+    time: Duration,
+}
+
+impl Checked {
+    /// The line's end: `; checked: clean (T ms)`, or the number of
+    /// violations and the first.
+    fn verdict(&self) -> String {
+        let ms = self.time.as_secs_f64() * 1e3;
+        match self.report.violations.first() {
+            None => format!("; checked: clean ({ms:.1} ms)"),
+            Some(first) => {
+                let k = self.report.violations.len();
+                let s = if k == 1 { "" } else { "s" };
+                format!("; checked: {k} violation{s} ({ms:.1} ms), first {first}")
+            }
+        }
+    }
+
+    /// `check.json`: the report as `formcam check -o` writes it.
+    fn json(&self) -> Result<Vec<u8>, RunError> {
+        let mut v = serde_json::to_vec_pretty(&self.report)
+            .map_err(|source| RunError::Summary { source })?;
+        v.push(b'\n');
+        Ok(v)
+    }
+}
+
+/// Checks the program `text` written for `job` (the job file at `path`) on
+/// its machine, as `formcam check OUT/program.<ext> --machine M` does: read
+/// back in the dialect of its extension, each block timed by its own feed,
+/// every axis's position, velocity, jump and acceleration limits. `None`
+/// for a user template's program (no reader knows its text).
+fn check_program(
+    path: &Path,
+    out: &Path,
+    job: &WindJob,
+    wound: &WoundProgram,
+    text: &[u8],
+) -> Result<Option<Checked>, RunError> {
+    let (Some(m), Some(jm), Post::Dialect(_)) = (&wound.machine, &job.machine, &wound.post) else {
+        return Ok(None);
+    };
+    let t = Instant::now();
+    let program = out.join(format!("program.{}", wound.post.extension()));
+    let machine = match &jm.source {
+        MachineSource::Shipped(n) => n.clone(),
+        MachineSource::File(f) => job.base_dir.join(f).display().to_string(),
+    };
+    let fail = |source: formcam_sim::SimError| RunError::Check {
+        path: path.to_path_buf(),
+        source: Box::new(source),
+    };
+    let text = String::from_utf8_lossy(text);
+    let report = formcam_sim::check_text(&program, &text, m, &machine).map_err(fail)?;
+    Ok(Some(Checked {
+        report,
+        time: t.elapsed(),
+    }))
 }
 
 /// A single-layer job: the layer's outputs are the job's.

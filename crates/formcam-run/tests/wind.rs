@@ -194,12 +194,48 @@ fn a_wind_file_runs_on_the_xab_winder_and_writes_marlin() {
 
 #[test]
 fn acceleration_limits_lengthen_the_program() {
-    let job = example_text("vessel-program-840d.toml")
-        .replace("# acceleration = true", "acceleration = true #");
-    let summary = winds("acceleration", &job);
-    let with = summary["program_time_s"].as_f64().unwrap();
-    let global = summary["program_time_global_s"].as_f64().unwrap();
+    // Kept by default: slower than the velocity and jump limits alone.
+    let kept = winds("acceleration", &example_text("vessel-program-840d.toml"));
+    let with = kept["program_time_s"].as_f64().unwrap();
+    let global = kept["program_time_global_s"].as_f64().unwrap();
     assert!(with > global, "{with} vs {global}");
+    // Switched off: the program times of the velocity and jump limits.
+    let job = example_text("vessel-program-840d.toml")
+        .replace("# acceleration = true", "acceleration = false #");
+    let free = winds("no-acceleration", &job);
+    assert_eq!(free["program_time_s"], free["program_time_global_s"]);
+    assert!(free["program_time_s"].as_f64().unwrap() < with);
+}
+
+#[test]
+fn the_written_program_is_checked_on_its_machine() {
+    let run = example("vessel-program-840d.toml", Stage::Program);
+    assert_eq!(run.violations, Some(0), "{}", run.line);
+    assert!(run.line.contains("; checked: clean ("), "{}", run.line);
+    let report: serde_json::Value =
+        serde_json::from_slice(&run.file("check.json").unwrap().bytes).unwrap();
+    assert_eq!(report["program"], "out/program.mpf");
+    assert_eq!(report["dialect"], "sinumerik-840d");
+    let blocks = summary(&run)["blocks"].as_u64().unwrap();
+    // The program's blocks and the rapid to the start (and any block the
+    // post splits to keep the spindle's words within their turns).
+    assert!(report["blocks"].as_u64().unwrap() > blocks, "{report}");
+    // Without a program nothing is checked.
+    let axes = example("vessel-program-840d.toml", Stage::Axes);
+    assert_eq!(axes.violations, None);
+    assert!(axes.file("check.json").is_none());
+    // Nor when asked not to.
+    let off = formcam_run::wind_checked_with(
+        &examples().join("vessel-program-840d.toml"),
+        Path::new("out"),
+        Stage::Program,
+        formcam_run::ProgramCheck::Off,
+        &formcam_run::progress::Silent,
+    )
+    .unwrap();
+    assert_eq!(off.violations, None);
+    assert!(off.file("check.json").is_none());
+    assert_eq!(off.file("program.mpf"), run.file("program.mpf"));
 }
 
 #[test]

@@ -398,8 +398,8 @@ fn parse_obj(text: &str) -> Result<TriMesh, (MeshPlace, MeshFault)> {
                 if face.len() < 3 {
                     return Err((place, MeshFault::ShortFace(face.len())));
                 }
-                for k in 1..face.len() - 1 {
-                    mesh.triangles.push([face[0], face[k], face[k + 1]]);
+                for pair in face[1..].windows(2) {
+                    mesh.triangles.push([face[0], pair[0], pair[1]]);
                 }
             }
             _ => {}

@@ -137,9 +137,9 @@ impl Collisions {
         let half = 0.5 * self.margin;
         let step = self.step();
         for b in tl.blocks() {
-            for k in 0..w {
-                from[k] = b.from[k] * scale[k];
-                to[k] = b.to[k] * scale[k];
+            for (k, s) in scale.iter().enumerate().take(w) {
+                from[k] = b.from[k] * s;
+                to[k] = b.to[k] * s;
             }
             let stage = self.stages.get(b.index).copied().unwrap_or(usize::MAX);
             let travel = (0..self.bodies.len())
@@ -153,8 +153,8 @@ impl Collisions {
             let first = if b.index == 0 { 0 } else { 1 };
             for s in first..=n {
                 let f = s as f64 / n as f64;
-                for k in 0..w {
-                    q[k] = from[k] + f * (to[k] - from[k]);
+                for ((qk, start), end) in q.iter_mut().zip(&from).zip(&to).take(w) {
+                    *qk = start + f * (end - start);
                 }
                 machine.poses_into(&q, &mut links);
                 boxes.clear();

@@ -68,7 +68,7 @@ impl Body {
             Mount::Link(l) => (l, machine.links[l].name.clone()),
             Mount::World => (0, "bed".to_string()),
         };
-        let reach = reach(&[shape.clone()], &origin);
+        let reach = reach(std::slice::from_ref(&shape), &origin);
         Self {
             mount,
             link,

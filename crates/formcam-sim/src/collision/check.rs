@@ -7,8 +7,8 @@ use std::path::Path;
 
 use formcam_machine::{JointKind, Machine};
 use nalgebra::Isometry3;
-use parry3d_f64::bounding_volume::BoundingVolume;
-use parry3d_f64::query::contact;
+use parry3d_f64::bounding_volume::Aabb;
+use parry3d_f64::query;
 use parry3d_f64::shape::SharedShape;
 
 use super::mandrel::Laminate;
@@ -16,6 +16,9 @@ use super::pairs::{Pair, pairs};
 use super::solids::{Body, Mount, machine_bodies, reach};
 use super::sweep::Sweep;
 use crate::{SimError, Timeline, Violation, ViolationKind};
+
+/// How many sampling steps beyond the margin the exact query looks.
+const LOOK_AHEAD: f64 = 8.0;
 
 /// The smallest sampling step, mm (half of it when the margin is 0).
 const MIN_STEP_MM: f64 = 0.1;
@@ -134,19 +137,29 @@ impl Collisions {
         let mut links: Vec<Isometry3<f64>> = Vec::with_capacity(machine.links.len());
         let mut poses = vec![Isometry3::identity(); self.bodies.len()];
         let mut boxes = Vec::with_capacity(self.bodies.len());
-        let half = 0.5 * self.margin;
         let step = self.step();
+        // Per pair, a lower bound of its distance less the margin at the
+        // last sample looked at, lowered by the pair's travel at every
+        // sample since: while it stays positive the pair is skipped.
+        let mut slack = vec![f64::NEG_INFINITY; self.pairs.len()];
+        let mut travel = vec![0.0; self.bodies.len()];
+        let mut last_stage = None;
         for b in tl.blocks() {
             for (k, s) in scale.iter().enumerate().take(w) {
                 from[k] = b.from[k] * s;
                 to[k] = b.to[k] * s;
             }
             let stage = self.stages.get(b.index).copied().unwrap_or(usize::MAX);
-            let travel = (0..self.bodies.len())
-                .map(|i| self.sweep.travel(i, &from, &to))
-                .fold(0.0, f64::max);
-            let n = if b.duration_s > 0.0 || travel > 0.0 {
-                (travel / step).ceil().max(1.0) as usize
+            if last_stage != Some(stage) {
+                slack.fill(f64::NEG_INFINITY);
+                last_stage = Some(stage);
+            }
+            for (i, t) in travel.iter_mut().enumerate() {
+                *t = self.sweep.travel(i, &from, &to);
+            }
+            let most = travel.iter().copied().fold(0.0, f64::max);
+            let n = if b.duration_s > 0.0 || most > 0.0 {
+                (most / step).ceil().max(1.0) as usize
             } else {
                 1
             };
@@ -163,29 +176,37 @@ impl Collisions {
                         Mount::Link(l) => links[l] * body.origin,
                         Mount::World => body.origin,
                     };
-                    boxes.push(body.aabb(pose, stage).loosened(half));
+                    boxes.push(body.aabb(pose, stage));
                 }
                 let t = b.start_s + f * b.duration_s;
                 let at_start = b.index == 0 && s == 0;
-                for (pair, tally) in self.pairs.iter().zip(&mut tallies) {
+                for ((pair, tally), slack) in self.pairs.iter().zip(&mut tallies).zip(&mut slack) {
                     if pair.rigid && !at_start {
                         continue;
                     }
                     let (i, j) = (pair.a, pair.b);
-                    if !boxes[i].intersects(&boxes[j]) {
+                    *slack -= (travel[i] + travel[j]) / n as f64;
+                    if *slack > 0.0 {
                         continue;
                     }
-                    let d = distance(
-                        &poses[i],
-                        self.bodies[i].shape(stage),
-                        &poses[j],
-                        self.bodies[j].shape(stage),
-                        self.margin,
-                    );
-                    if let Some(d) = d
-                        && d < self.margin
-                    {
-                        tally.hit(b.index, t, d);
+                    // The broad phase: the boxes' gap bounds the distance.
+                    let gap = box_gap(&boxes[i], &boxes[j]);
+                    if gap >= self.margin {
+                        *slack = gap - self.margin;
+                        continue;
+                    }
+                    let (si, sj) = (self.bodies[i].shape(stage), self.bodies[j].shape(stage));
+                    // Looked for up to a few steps beyond the margin, so that
+                    // a pair found clear is skipped for a few samples.
+                    let ahead = LOOK_AHEAD * step;
+                    match distance(&poses[i], si, &poses[j], sj, self.margin + ahead) {
+                        None => *slack = ahead,
+                        Some(d) => {
+                            *slack = d - self.margin;
+                            if d < self.margin {
+                                tally.hit(b.index, t, d);
+                            }
+                        }
                     }
                 }
             }
@@ -201,22 +222,31 @@ impl Collisions {
     }
 }
 
-/// The distance between two placed solids when it is at most `margin`
-/// (negative: the depth they overlap), from parry's contact query.
+/// The distance between two placed solids where it is at most `reach`
+/// (negative: the depth they overlap), from parry's contact query; `None`
+/// when they are further apart.
 fn distance(
     p1: &Isometry3<f64>,
     s1: &SharedShape,
     p2: &Isometry3<f64>,
     s2: &SharedShape,
-    margin: f64,
+    reach: f64,
 ) -> Option<f64> {
     // Every pair of our shapes has a contact query (a plane, convex
     // solids, the mandrel's compound of convex frustums); none is
     // unsupported.
-    contact(p1, s1.as_ref(), p2, s2.as_ref(), margin)
+    query::contact(p1, s1.as_ref(), p2, s2.as_ref(), reach)
         .ok()
         .flatten()
         .map(|c| c.dist)
+}
+
+/// A lower bound of the distance between the solids in two boxes: their
+/// largest separation along an axis (negative where they overlap).
+fn box_gap(a: &Aabb, b: &Aabb) -> f64 {
+    (0..3)
+        .map(|k| (b.mins[k] - a.maxs[k]).max(a.mins[k] - b.maxs[k]))
+        .fold(f64::NEG_INFINITY, f64::max)
 }
 
 /// One occurrence: (block index, time, distance).

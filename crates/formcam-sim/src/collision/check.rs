@@ -1,7 +1,7 @@
 //! The check over a timeline: per sample every solid placed by forward
-//! kinematics, the broad phase (boxes grown by the margin), then the exact
-//! distance (parry's `contact`, negative when the solids overlap) only for
-//! the pairs whose boxes meet.
+//! kinematics, the broad phase (the gap between the solids' boxes), then the
+//! exact distance (parry's `contact`, negative when the solids overlap)
+//! only for the pairs whose boxes come within the margin.
 
 use std::path::Path;
 

@@ -13,8 +13,9 @@
 //!   joined directly, not ignored by the machine file).
 //! * `sweep` — how far a solid can travel within a block, so that the
 //!   samples are close enough.
-//! * `check` — per sample the broad phase (boxes grown by the margin), then
-//!   the exact distance only where the boxes meet; [`Collisions::check`].
+//! * `check` — per sample the broad phase (the gap between boxes), then the
+//!   exact distance only where the boxes come within the margin;
+//!   [`Collisions::check`].
 
 mod check;
 mod mandrel;

@@ -112,14 +112,19 @@ enum Command {
         what: MachineCommand,
     },
     /// Checks a written program on a machine: axis limits, velocity,
-    /// velocity jump and acceleration per block. Exit status 0 when clean,
-    /// 3 when a check fails, 2 when an input cannot be read.
+    /// velocity jump and acceleration per block, and collisions between the
+    /// machine's solids (and the mandrel, with --mandrel). Exit status 0 when
+    /// clean, 3 when a check fails, 2 when an input cannot be read.
     Check {
         /// The program (.mpf, .nc, .ngc, .gcode or .cls: the dialect by its extension).
         program: PathBuf,
         /// The machine file (TOML or URDF), or a shipped machine's name.
         #[arg(long)]
         machine: PathBuf,
+        /// The winding job (TOML or .wind) whose mandrel, grown by the
+        /// laminate layer by layer, is checked against the machine's solids.
+        #[arg(long, value_name = "JOB")]
+        mandrel: Option<PathBuf>,
         /// Write the report (JSON: every violation) to this file.
         #[arg(short, long)]
         output: Option<PathBuf>,
@@ -283,8 +288,9 @@ fn main() -> ExitCode {
         Command::Check {
             program,
             machine,
+            mandrel,
             output,
-        } => match check::run(&program, &machine, output.as_deref()) {
+        } => match check::run(&program, &machine, mandrel, output.as_deref()) {
             Ok(true) => Ok(()),
             Ok(false) => return ExitCode::from(3),
             Err(e) => Err(e),

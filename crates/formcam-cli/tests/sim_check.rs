@@ -160,3 +160,41 @@ fn every_program_the_demo_writes_keeps_its_machines_limits() {
     // The winding programs: Marlin, CLDATA, LinuxCNC and 840D.
     assert!(checked.len() >= 6, "{checked:?}");
 }
+
+/// A tube job of radius `r`, for its mandrel.
+fn tube_job(r: f64) -> String {
+    format!(
+        "[mandrel]\nkind = \"cylinder\"\nradius = {r:.1}\nlength = 600.0\n\n[winding]\nmu = 0.0\n\
+         winding_angle_deg = 55.0\nband_width = 8.0\nband_thickness = 0.3\ndwell_min_deg = 180.0\n"
+    )
+}
+
+#[test]
+fn the_mandrel_of_a_job_is_checked_against_the_machine() {
+    let dir = scratch("mandrel");
+    let machine = machines().join("winder-4axis.toml");
+    let good = dir.join("good.mpf");
+    std::fs::write(&good, GOOD).unwrap();
+    // The eye's roller (radius 12) at Y = 250 clears a tube of radius 100;
+    // a tube of radius 240 reaches into it.
+    let thin = dir.join("thin.toml");
+    std::fs::write(&thin, tube_job(100.0)).unwrap();
+    let o = check(&[s(&good), "--machine", s(&machine), "--mandrel", s(&thin)]);
+    assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    let thick = dir.join("thick.toml");
+    std::fs::write(&thick, tube_job(240.0)).unwrap();
+    let o = check(&[s(&good), "--machine", s(&machine), "--mandrel", s(&thick)]);
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    let line = stdout(&o);
+    assert!(
+        line.starts_with(
+            "1 violation: first collision at block 1 (line 2, 0.000 s): eye and mandrel overlap by"
+        ),
+        "{line}"
+    );
+    // A job that cannot be read names its file.
+    let missing = dir.join("missing.toml");
+    let o = check(&[s(&good), "--machine", s(&machine), "--mandrel", s(&missing)]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("missing.toml"), "{}", stderr(&o));
+}

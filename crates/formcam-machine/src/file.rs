@@ -14,6 +14,26 @@ pub struct MachineFile {
     /// Key points fixed to links.
     #[serde(default, rename = "point")]
     pub points: Vec<PointSpec>,
+    /// How the simulator checks the solids for collisions.
+    #[serde(default)]
+    pub collision: Option<CollisionSpec>,
+}
+
+/// The `[collision]` table: the clearance the simulator keeps between
+/// solids, the pairs of links it does not check, and the bed.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CollisionSpec {
+    /// The clearance every pair of solids must keep, mm (default 5).
+    pub margin_mm: Option<f64>,
+    /// Pairs of links whose solids are not checked against each other
+    /// (besides solids on one link and on links joined directly).
+    #[serde(default)]
+    pub ignore: Vec<[String; 2]>,
+    /// The bed as a plane: everything below this height (world `z`, mm).
+    pub bed_z_mm: Option<f64>,
+    /// The bed as a solid in the world frame (a `[[link.visual]]` table).
+    pub bed: Option<VisualSpec>,
 }
 
 /// What kind of machine.
@@ -180,8 +200,10 @@ pub struct VisualSpec {
     pub radius: Option<f64>,
     /// Cylinder length, mm.
     pub length: Option<f64>,
-    /// Mesh: an STL file, relative to the machine file.
+    /// Mesh: an STL or OBJ file, relative to the machine file.
     pub file: Option<String>,
+    /// Mesh: the factor per axis its vertices are multiplied by (default 1).
+    pub scale: Option<[f64; 3]>,
     /// Placement in the link's frame.
     #[serde(default)]
     pub origin: OriginSpec,

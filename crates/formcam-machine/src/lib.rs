@@ -11,26 +11,30 @@
 mod axes_csv;
 mod band;
 mod chain;
+mod collision;
 mod error;
 mod file;
 mod fk;
 mod format;
 mod ik;
 mod machine;
+mod mesh;
 pub mod shipped;
 mod target;
 mod urdf;
 
 pub use axes_csv::{AxesRow, read_axes_csv};
 pub use band::{BandPassed, band_passed};
+pub use collision::{Bed, Collision, DEFAULT_MARGIN_MM};
 pub use error::{AxesCsvError, IkFault, MachineError, UrdfFault};
 pub use file::{
-    DhSpec, JointType, LinkSpec, MachineFile, MachineKind, MachineTable, OriginSpec, PointSpec,
-    SpindleFollows, VisualSpec,
+    CollisionSpec, DhSpec, JointType, LinkSpec, MachineFile, MachineKind, MachineTable, OriginSpec,
+    PointSpec, SpindleFollows, VisualSpec,
 };
 pub use fk::Fk;
 pub use format::MachineFormat;
 pub use ik::{AxisTrack, IkMethod, Issue, IssueKind, ORIENTATION_SCALE, solve};
 pub use machine::{Axis, Joint, JointKind, KeyPoint, Link, Machine, Roles, Shape, Visual};
+pub use mesh::{MeshError, MeshFault, MeshFormat, MeshPlace, TriMesh, parse_mesh, read_mesh};
 pub use target::{Target, placement_targets, winder_targets};
 pub use urdf::links_from_urdf;

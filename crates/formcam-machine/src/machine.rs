@@ -6,6 +6,7 @@ use std::fmt::Write as _;
 use nalgebra::{Isometry3, Point3, Translation3, Unit, UnitQuaternion, Vector3};
 
 use crate::MachineError;
+use crate::collision::Collision;
 use crate::file::{
     DhSpec, JointType, LinkSpec, MachineFile, MachineKind, OriginSpec, SpindleFollows, VisualSpec,
 };
@@ -82,7 +83,8 @@ pub enum Shape {
     },
     /// A sphere, mm.
     Sphere(f64),
-    /// An STL mesh, the path as written in the machine file.
+    /// An STL or OBJ mesh, the path as written in the machine file
+    /// (relative to it; read by [`crate::read_mesh`] when needed).
     Mesh(String),
 }
 
@@ -95,6 +97,9 @@ pub struct Visual {
     pub origin: Isometry3<f64>,
     /// Colour `#rrggbb`.
     pub color: String,
+    /// A mesh's factor per axis (its vertices as read times this; 1 for
+    /// other shapes).
+    pub scale: [f64; 3],
 }
 
 /// A link.
@@ -190,6 +195,8 @@ pub struct Machine {
     pub points: Vec<KeyPoint>,
     /// Roles for the kinematics.
     pub roles: Roles,
+    /// How the simulator checks its solids for collisions.
+    pub collision: Collision,
 }
 
 fn iso(o: &OriginSpec) -> Isometry3<f64> {
@@ -241,7 +248,7 @@ fn positive(v: Option<f64>, place: &str, field: &str) -> Result<f64, MachineErro
     }
 }
 
-fn visual(v: &VisualSpec, place: &str) -> Result<Visual, MachineError> {
+pub(crate) fn visual(v: &VisualSpec, place: &str) -> Result<Visual, MachineError> {
     let need = |x: Option<f64>, field: &str| -> Result<f64, MachineError> {
         match x {
             Some(x) if x.is_finite() && x > 0.0 => Ok(x),
@@ -273,7 +280,11 @@ fn visual(v: &VisualSpec, place: &str) -> Result<Visual, MachineError> {
         },
         "sphere" => Shape::Sphere(need(v.radius, "radius")?),
         "mesh" => Shape::Mesh(v.file.clone().ok_or_else(|| {
-            MachineError::field(place, "visual.file", "missing for a mesh: an STL file")
+            MachineError::field(
+                place,
+                "visual.file",
+                "missing for a mesh: an STL or OBJ file",
+            )
         })?),
         other => {
             return Err(MachineError::field(
@@ -292,10 +303,27 @@ fn visual(v: &VisualSpec, place: &str) -> Result<Visual, MachineError> {
             format!("\"{color}\" is not a colour #rrggbb"),
         ));
     }
+    let scale = match (v.scale, &shape) {
+        (None, _) => [1.0; 3],
+        (Some(s), Shape::Mesh(_)) => {
+            for c in s {
+                need(Some(c), "scale")?;
+            }
+            s
+        }
+        (Some(_), _) => {
+            return Err(MachineError::field(
+                place,
+                "visual.scale",
+                "only for a mesh",
+            ));
+        }
+    };
     Ok(Visual {
         shape,
         origin: iso(&v.origin),
         color,
+        scale,
     })
 }
 
@@ -762,12 +790,14 @@ impl Machine {
                 "a placement head needs the direction that presses into the mandrel",
             ));
         }
+        let collision = crate::collision::settings(f.collision.as_ref(), &links)?;
         Ok(Machine {
             name: m.name.clone(),
             links,
             axes,
             points,
             roles,
+            collision,
         })
     }
 

@@ -12,7 +12,8 @@ use std::collections::{HashMap, HashSet};
 use serde::Deserialize;
 
 use crate::file::{
-    JointType, LinkSpec, MachineFile, MachineTable, OriginSpec, PointSpec, VisualSpec,
+    CollisionSpec, JointType, LinkSpec, MachineFile, MachineTable, OriginSpec, PointSpec,
+    VisualSpec,
 };
 use crate::machine::{Machine, line_col};
 use crate::{MachineError, UrdfFault};
@@ -45,8 +46,9 @@ const MM: f64 = 1000.0;
 ///   safety controllers are not used; URDF has no home values (they are 0).
 /// - Visuals with a `box`, `cylinder`, `sphere` or `mesh` geometry become
 ///   visuals with their sizes and origin in mm; a mesh keeps its file name as
-///   written and its `scale` is not applied (machine meshes are in mm, as are
-///   URDF meshes with scale 0.001). The colour is the material's `rgba` as
+///   written (relative to the URDF file; a `file://` prefix is dropped, a
+///   `package://` name is an error) and its vertices, in metres, are
+///   multiplied by its `scale` times 1000 (a mesh drawn in mm has scale 0.001). The colour is the material's `rgba` as
 ///   `#rrggbb` (a material given by name only takes the colour of the document's
 ///   material of that name), else the default. A `capsule` is an error.
 /// - Inertials and collision geometry are ignored.
@@ -319,6 +321,7 @@ fn visual(
         radius: None,
         length: None,
         file: None,
+        scale: None,
         origin: origin(&v.origin),
         color: v.material.as_ref().and_then(|m| {
             m.color
@@ -341,9 +344,28 @@ fn visual(
             spec.shape = "sphere".into();
             spec.radius = Some(radius * MM);
         }
-        urdf_rs::Geometry::Mesh { filename, .. } => {
+        urdf_rs::Geometry::Mesh { filename, scale } => {
+            if filename.starts_with("package://") {
+                return Err(MachineError::field(
+                    place,
+                    "visual.mesh.filename",
+                    format!(
+                        "\"{}\": package:// names are not resolved (no ROS package path); \
+                         give the file relative to the URDF file",
+                        formcam_files::excerpt(filename)
+                    ),
+                ));
+            }
             spec.shape = "mesh".into();
-            spec.file = Some(filename.clone());
+            spec.file = Some(
+                filename
+                    .strip_prefix("file://")
+                    .unwrap_or(filename)
+                    .to_string(),
+            );
+            // URDF meshes are in metres times their scale.
+            let s = scale.as_ref().map_or([1.0; 3], |s| s.0);
+            spec.scale = Some(s.map(|v| v * MM));
         }
         urdf_rs::Geometry::Capsule { .. } => {
             return Err(MachineError::field(
@@ -372,6 +394,7 @@ impl Machine {
             machine,
             links: links_from_urdf(text)?,
             points,
+            collision: None,
         };
         Machine::from_file(&file)
     }
@@ -412,6 +435,7 @@ impl Machine {
             machine: roles.machine,
             links,
             points: roles.points,
+            collision: roles.collision,
         })
     }
 }
@@ -425,6 +449,9 @@ struct FormcamRoles {
     /// The key points.
     #[serde(default, rename = "point")]
     points: Vec<PointSpec>,
+    /// The `[collision]` table.
+    #[serde(default)]
+    collision: Option<CollisionSpec>,
 }
 
 /// The roles in the `<formcam>` element of a URDF document (already read by

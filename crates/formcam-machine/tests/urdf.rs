@@ -202,7 +202,7 @@ fn units_names_limits_and_colours() {
                 <material name="red"/>
             </visual>
             <visual>
-                <geometry><mesh filename="package://cell/base.stl" scale="0.001 0.001 0.001"/></geometry>
+                <geometry><mesh filename="file://meshes/base.stl" scale="0.001 0.002 0.001"/></geometry>
             </visual>
         </link>
         <link name="carriage"/>
@@ -241,8 +241,17 @@ fn units_names_limits_and_colours() {
     assert_eq!(s.color.as_deref(), Some("#ff0000"));
     let m = &base.visuals[1];
     assert_eq!(m.shape, "mesh");
-    assert_eq!(m.file.as_deref(), Some("package://cell/base.stl"));
+    // The `file://` prefix dropped; metres times the scale, in mm.
+    assert_eq!(m.file.as_deref(), Some("meshes/base.stl"));
+    assert_eq!(m.scale, Some([1.0, 2.0, 1.0]));
     assert_eq!(m.color, None);
+    // A ROS package name cannot be resolved: refused, naming the link.
+    let package = text.replace("file://meshes/base.stl", "package://cell/base.stl");
+    let e = links_from_urdf(&package).unwrap_err().to_string();
+    assert!(
+        e.starts_with("link \"base\": visual.mesh.filename: \"package://cell/base.stl\": package:// names are not resolved"),
+        "{e}"
+    );
 
     // A name that is no NC address: J and its place among the movable joints.
     let c = &links[1];

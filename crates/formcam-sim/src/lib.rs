@@ -14,9 +14,15 @@
 //! * [`check_timeline`] — the axis checks: position limits, velocity,
 //!   velocity jump and acceleration per axis, each a [`Violation`] with the
 //!   block, line and time where it first happens and where it is worst.
+//! * [`Collisions`] — every pair of solids that can meet (the links'
+//!   solids, the bed, the mandrel grown by the laminate laid so far) kept
+//!   the machine's clearance margin apart: a broad phase, then the exact
+//!   distance with parry3d; each pair too close a [`Violation`] of kind
+//!   [`ViolationKind::Collision`] naming both links.
 //! * [`check_files`] — the whole pipeline of `formcam check`: a program file
 //!   and a machine (file or shipped name) to a [`Report`] and its one line.
 
+mod collision;
 mod error;
 mod feed;
 mod limits;
@@ -24,12 +30,19 @@ mod pipeline;
 mod report;
 mod timeline;
 
+pub use collision::{
+    Body, CHORD_TOLERANCE_MM, Collisions, Laminate, LaminateError, Mount, Pair, SIDES, exempt,
+    machine_bodies, revolution_solid, visual_shape,
+};
 pub use error::SimError;
 pub use feed::FeedRule;
 pub use limits::{
     AxisLimits, RELATIVE_TOLERANCE, RESOLUTION_DEG, RESOLUTION_MM, Violation, ViolationKind,
     check_timeline,
 };
-pub use pipeline::{CheckRun, check_files, check_text, program_axes, read_program};
+pub use pipeline::{
+    CheckOptions, CheckRun, check_files, check_files_with, check_text, check_text_in, program_axes,
+    read_program,
+};
 pub use report::Report;
 pub use timeline::{BlockSpan, Poses, Timeline};

@@ -88,6 +88,9 @@ pub enum ViolationKind {
     /// An axis's velocity changing between neighbouring blocks faster than
     /// its acceleration limit allows within half of each (`a_max_*`).
     Acceleration,
+    /// Two solids closer than the machine's clearance margin (`[collision]
+    /// margin_mm`), or overlapping.
+    Collision,
 }
 
 impl ViolationKind {
@@ -98,6 +101,7 @@ impl ViolationKind {
             Self::Velocity => "velocity",
             Self::VelocityJump => "velocity-jump",
             Self::Acceleration => "acceleration",
+            Self::Collision => "collision",
         }
     }
 }
@@ -108,8 +112,12 @@ impl ViolationKind {
 pub struct Violation {
     /// What is broken.
     pub kind: ViolationKind,
-    /// The axis (NC address).
+    /// The axis (NC address); empty for a collision.
+    #[serde(skip_serializing_if = "String::is_empty")]
     pub axis: String,
+    /// A collision's two solids: their links' names (`bed` for the bed).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub links: Vec<String>,
     /// The first block that breaks it (1-based).
     pub block: usize,
     /// That block's program line (1-based).
@@ -137,6 +145,22 @@ pub struct Violation {
 
 impl std::fmt::Display for Violation {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.kind == ViolationKind::Collision {
+            let [a, b] = [0, 1].map(|k| self.links.get(k).map_or("", String::as_str));
+            let how = if self.value < 0.0 {
+                format!("overlap by {} mm", short(-self.value))
+            } else {
+                format!("{} mm apart", short(self.value))
+            };
+            return write!(
+                f,
+                "collision at block {} (line {}, {:.3} s): {a} and {b} {how} (margin {} mm)",
+                self.block,
+                self.line,
+                self.time_s,
+                short(self.limit)
+            );
+        }
         let rel = if self.kind == ViolationKind::Position && self.value < self.limit {
             "<"
         } else {
@@ -224,6 +248,7 @@ impl Tally {
         Some(Violation {
             kind: self.kind,
             axis: limits[self.axis].name.clone(),
+            links: Vec::new(),
             block: first.0 + 1,
             line: line(first.0),
             time_s: first.1,

@@ -5,7 +5,9 @@ use std::path::{Path, PathBuf};
 use formcam_machine::{JointKind, Machine};
 use formcam_nc::{AxisSpec, Dialect, Program, read_cldata_lines, read_gcode_lines_in};
 
-use crate::{AxisLimits, FeedRule, Report, SimError, Timeline, check_timeline};
+use crate::{
+    AxisLimits, Collisions, FeedRule, Laminate, Report, SimError, Timeline, check_timeline,
+};
 
 /// The program axes of a machine, as formcam's programs for it name them:
 /// every driven axis in the machine's order, revolute ones rotary (modulo
@@ -76,18 +78,47 @@ impl CheckRun {
 }
 
 /// Checks the program text `text` (of the file `program`, its dialect from
-/// the extension) on `machine` (its name for the report): the timeline and
-/// every axis check.
+/// the extension) on `machine` (its name for the report): the timeline,
+/// every axis check and the collisions of the machine's solids (mesh files
+/// as written, relative to the current folder).
 pub fn check_text(
     program: &Path,
     text: &str,
     machine: &Machine,
     machine_name: &str,
 ) -> Result<Report, SimError> {
+    check_text_in(program, text, machine, machine_name, None, None)
+}
+
+/// [`check_text`] with the machine's mesh files relative to `mesh_dir`
+/// and, when given, the mandrel of a winding job's `laminate` checked
+/// against the machine's solids.
+pub fn check_text_in(
+    program: &Path,
+    text: &str,
+    machine: &Machine,
+    machine_name: &str,
+    mesh_dir: Option<&Path>,
+    laminate: Option<&Laminate>,
+) -> Result<Report, SimError> {
     let (p, lines, dialect) = read_program(program, text, machine)?;
     let rule = FeedRule::of(dialect);
     let tl = Timeline::new(&p, &lines, rule, machine)?;
-    let violations = check_timeline(&tl, &AxisLimits::of(machine));
+    let mut violations = check_timeline(&tl, &AxisLimits::of(machine));
+    let collisions = match laminate {
+        None => Collisions::new(machine, mesh_dir)?,
+        Some(l) => {
+            let stages = l.stage_of_blocks(p.blocks.iter().map(|b| b.comment.as_deref()));
+            Collisions::with_mandrel(machine, mesh_dir, l, stages)?
+        }
+    };
+    violations.extend(collisions.check(&tl, machine));
+    violations.sort_by(|a, b| {
+        a.time_s
+            .total_cmp(&b.time_s)
+            .then(a.block.cmp(&b.block))
+            .then(a.kind.cmp(&b.kind))
+    });
     Ok(Report {
         program: program.display().to_string(),
         machine: machine_name.to_string(),
@@ -100,15 +131,35 @@ pub fn check_text(
     })
 }
 
+/// What a check looks at besides the program and the machine.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct CheckOptions {
+    /// A winding job (TOML) whose mandrel, grown by its laminate layer by
+    /// layer, is checked against the machine's solids (`--mandrel JOB`).
+    pub mandrel: Option<PathBuf>,
+}
+
 /// `formcam check PROGRAM --machine MACHINE`: reads the program file and the
 /// machine (a TOML or URDF file, or a shipped machine's name when no such
 /// file exists) and checks the program.
 pub fn check_files(program: &Path, machine: &Path) -> Result<CheckRun, SimError> {
+    check_files_with(program, machine, &CheckOptions::default())
+}
+
+/// [`check_files`] with `options`: the mandrel of a winding job. Mesh files
+/// are read relative to the machine file.
+pub fn check_files_with(
+    program: &Path,
+    machine: &Path,
+    options: &CheckOptions,
+) -> Result<CheckRun, SimError> {
     let mut inputs = vec![program.to_path_buf()];
     let name = machine.to_string_lossy();
+    let mut mesh_dir = None;
     let m = match formcam_machine::shipped::shipped(&name) {
         Some(s) if !machine.exists() => s.machine(),
         _ => {
+            mesh_dir = machine.parent();
             let text = formcam_files::read_text(machine)?;
             inputs.push(machine.to_path_buf());
             Machine::from_file_text(machine, &text)
@@ -118,8 +169,15 @@ pub fn check_files(program: &Path, machine: &Path) -> Result<CheckRun, SimError>
         path: machine.to_path_buf(),
         source,
     })?;
+    let laminate = match &options.mandrel {
+        Some(job) => {
+            inputs.push(job.clone());
+            Some(Laminate::from_job_file(job)?)
+        }
+        None => None,
+    };
     let text = formcam_files::read_text(program)?;
-    let report = check_text(program, &text, &m, &name)?;
+    let report = check_text_in(program, &text, &m, &name, mesh_dir, laminate.as_ref())?;
     Ok(CheckRun {
         line: report.line(),
         report,

@@ -117,6 +117,10 @@ enum Command {
         /// Write the report (JSON: every violation) to this file.
         #[arg(short, long)]
         output: Option<PathBuf>,
+        /// The winding job the program was written from: the free fibre is
+        /// checked too (it must not cut the mandrel nor meet a solid).
+        #[arg(long, value_name = "JOB")]
+        mandrel: Option<PathBuf>,
     },
     /// Shows a winding result in the browser: serves the page, the result's
     /// files and its timeline on 127.0.0.1 and prints the address first.
@@ -263,7 +267,8 @@ fn main() -> ExitCode {
             program,
             machine,
             output,
-        } => match check::run(&program, &machine, output.as_deref()) {
+            mandrel,
+        } => match check::run(&program, &machine, output.as_deref(), mandrel.as_deref()) {
             Ok(true) => Ok(()),
             Ok(false) => return ExitCode::from(3),
             Err(e) => Err(e),

@@ -58,6 +58,20 @@ pub enum SimError {
         /// What is wrong.
         what: String,
     },
+    /// The winding job given for the free fibre cannot be read.
+    #[error("{}: {what}", path.display())]
+    Job {
+        /// The job file.
+        path: PathBuf,
+        /// What is wrong (naming the field).
+        what: String,
+    },
+    /// The free fibre cannot be followed along the program.
+    #[error("free fibre: {what}")]
+    Fibre {
+        /// Why.
+        what: String,
+    },
     /// The report could not be serialised.
     #[error("report.json: {0}")]
     Report(#[from] serde_json::Error),

@@ -14,14 +14,21 @@
 //! * [`check_timeline`] — the axis checks: position limits, velocity,
 //!   velocity jump and acceleration per axis, each a [`Violation`] with the
 //!   block, line and time where it first happens and where it is worst.
+//! * [`FreeFibre`] — where the free fibre is at each time of a winding
+//!   program: the payout point by forward kinematics, the contact point on
+//!   the mandrel recovered from the winding job planned again, by the
+//!   spindle's angle; [`check_snag`] — the fibre must not cut the mandrel
+//!   nor come near a machine solid ([`SnagOptions`]).
 //! * [`check_files`] — the whole pipeline of `formcam check`: a program file
 //!   and a machine (file or shipped name) to a [`Report`] and its one line.
 
 mod error;
 mod feed;
+mod fibre;
 mod limits;
 mod pipeline;
 mod report;
+mod snag;
 mod timeline;
 
 pub use error::SimError;
@@ -30,6 +37,10 @@ pub use limits::{
     AxisLimits, RELATIVE_TOLERANCE, RESOLUTION_DEG, RESOLUTION_MM, Violation, ViolationKind,
     check_timeline,
 };
-pub use pipeline::{CheckRun, check_files, check_text, program_axes, read_program};
+pub use fibre::{FibreLayer, FibreSampler, FibreState, FibreTrack, FreeFibre};
+pub use pipeline::{
+    CheckRun, check_files, check_files_with, check_text, program_axes, read_program,
+};
+pub use snag::{SnagOptions, check_snag};
 pub use report::Report;
 pub use timeline::{BlockSpan, Poses, Timeline};

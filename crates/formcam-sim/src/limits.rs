@@ -88,6 +88,9 @@ pub enum ViolationKind {
     /// An axis's velocity changing between neighbouring blocks faster than
     /// its acceleration limit allows within half of each (`a_max_*`).
     Acceleration,
+    /// The free fibre, from the payout point to its contact point, cutting
+    /// the mandrel or coming nearer a solid than the margin.
+    Snag,
 }
 
 impl ViolationKind {
@@ -98,6 +101,7 @@ impl ViolationKind {
             Self::Velocity => "velocity",
             Self::VelocityJump => "velocity-jump",
             Self::Acceleration => "acceleration",
+            Self::Snag => "snag",
         }
     }
 }
@@ -108,7 +112,8 @@ impl ViolationKind {
 pub struct Violation {
     /// What is broken.
     pub kind: ViolationKind,
-    /// The axis (NC address).
+    /// The axis (NC address); for a snag, what the fibre meets (`mandrel`,
+    /// or a solid's link).
     pub axis: String,
     /// The first block that breaks it (1-based).
     pub block: usize,
@@ -137,14 +142,20 @@ pub struct Violation {
 
 impl std::fmt::Display for Violation {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let rel = if self.kind == ViolationKind::Position && self.value < self.limit {
+        let below = matches!(self.kind, ViolationKind::Position | ViolationKind::Snag);
+        let rel = if below && self.value < self.limit {
             "<"
         } else {
             ">"
         };
+        let what = if self.kind == ViolationKind::Snag {
+            "fibre to"
+        } else {
+            "axis"
+        };
         write!(
             f,
-            "{} at block {} (line {}, {:.3} s): axis {} {} {} {rel} {} {}",
+            "{} at block {} (line {}, {:.3} s): {what} {} {} {} {rel} {} {}",
             self.kind.name(),
             self.block,
             self.line,

@@ -5,7 +5,10 @@ use std::path::{Path, PathBuf};
 use formcam_machine::{JointKind, Machine};
 use formcam_nc::{AxisSpec, Dialect, Program, read_cldata_lines, read_gcode_lines_in};
 
-use crate::{AxisLimits, FeedRule, Report, SimError, Timeline, check_timeline};
+use crate::{
+    AxisLimits, FeedRule, FreeFibre, Report, SimError, SnagOptions, Timeline, check_snag,
+    check_timeline,
+};
 
 /// The program axes of a machine, as formcam's programs for it name them:
 /// every driven axis in the machine's order, revolute ones rotary (modulo
@@ -104,9 +107,46 @@ pub fn check_text(
 /// machine (a TOML or URDF file, or a shipped machine's name when no such
 /// file exists) and checks the program.
 pub fn check_files(program: &Path, machine: &Path) -> Result<CheckRun, SimError> {
-    let mut inputs = vec![program.to_path_buf()];
+    check_files_with(program, machine, None)
+}
+
+/// [`check_files`], and with `snag_job` (the winding job the program was
+/// written from, `--mandrel JOB`) the free-fibre snag check too
+/// ([`check_snag`] with [`SnagOptions::default`], on the machine given).
+pub fn check_files_with(
+    program: &Path,
+    machine: &Path,
+    snag_job: Option<&Path>,
+) -> Result<CheckRun, SimError> {
+    let mut run = check_axes_files(program, machine)?;
+    if let Some(job) = snag_job {
+        let fibre = FreeFibre::from_job_file(job)?;
+        run.inputs.push(job.to_path_buf());
+        let m = machine_of(machine, &mut Vec::new())?;
+        let fibre = fibre.with_machine(m)?;
+        let text = formcam_files::read_text(program)?;
+        let (p, lines, dialect) = read_program(program, &text, fibre.machine())?;
+        let tl = Timeline::new(&p, &lines, FeedRule::of(dialect), fibre.machine())?;
+        let snags = check_snag(&tl, &fibre, &SnagOptions::default())?;
+        let r = &mut run.report;
+        r.violations.extend(snags);
+        r.violations.sort_by(|a, b| {
+            a.time_s
+                .total_cmp(&b.time_s)
+                .then(a.block.cmp(&b.block))
+                .then(a.kind.cmp(&b.kind))
+        });
+        r.clean = r.violations.is_empty();
+        run.line = r.line();
+    }
+    Ok(run)
+}
+
+/// The machine of `--machine`: a file, or a shipped machine's name when no
+/// such file exists; a file read is added to `inputs`.
+fn machine_of(machine: &Path, inputs: &mut Vec<PathBuf>) -> Result<Machine, SimError> {
     let name = machine.to_string_lossy();
-    let m = match formcam_machine::shipped::shipped(&name) {
+    match formcam_machine::shipped::shipped(&name) {
         Some(s) if !machine.exists() => s.machine(),
         _ => {
             let text = formcam_files::read_text(machine)?;
@@ -117,7 +157,14 @@ pub fn check_files(program: &Path, machine: &Path) -> Result<CheckRun, SimError>
     .map_err(|source| SimError::Machine {
         path: machine.to_path_buf(),
         source,
-    })?;
+    })
+}
+
+/// The axis checks of [`check_files`].
+fn check_axes_files(program: &Path, machine: &Path) -> Result<CheckRun, SimError> {
+    let mut inputs = vec![program.to_path_buf()];
+    let name = machine.to_string_lossy();
+    let m = machine_of(machine, &mut inputs)?;
     let text = formcam_files::read_text(program)?;
     let report = check_text(program, &text, &m, &name)?;
     Ok(CheckRun {

@@ -244,9 +244,11 @@ impl DwellRule {
             Self::Fanuc => match (word(b'X').or_else(|| word(b'U')), word(b'P')) {
                 (Some(w), _) => Some(w.1),
                 (None, Some(&(_, _, true))) => {
-                    return Err("G4 P with a decimal point: its unit depends on the control's \
+                    return Err(
+                        "G4 P with a decimal point: its unit depends on the control's \
                                 setting; give X seconds or P milliseconds without a point"
-                        .into());
+                            .into(),
+                    );
                 }
                 (None, Some(w)) => Some(w.1 / 1000.0),
                 (None, None) => None,
@@ -681,7 +683,10 @@ mod tests {
             (Dialect::LinuxCnc, "G4 P-1", "negative"),
         ] {
             let text = format!("{head}{line}\n");
-            let e = read(&text, d).err().map(|e| e.to_string()).unwrap_or_default();
+            let e = read(&text, d)
+                .err()
+                .map(|e| e.to_string())
+                .unwrap_or_default();
             assert!(e.contains(says) && e.contains("line 3"), "{line}: {e}");
         }
     }

@@ -33,14 +33,14 @@ mod timeline;
 
 pub use error::SimError;
 pub use feed::FeedRule;
+pub use fibre::{FibreLayer, FibreSampler, FibreState, FibreTrack, FreeFibre};
 pub use limits::{
     AxisLimits, RELATIVE_TOLERANCE, RESOLUTION_DEG, RESOLUTION_MM, Violation, ViolationKind,
     check_timeline,
 };
-pub use fibre::{FibreLayer, FibreSampler, FibreState, FibreTrack, FreeFibre};
 pub use pipeline::{
     CheckRun, check_files, check_files_with, check_text, program_axes, read_program,
 };
-pub use snag::{SnagOptions, check_snag};
 pub use report::Report;
+pub use snag::{SnagOptions, check_snag};
 pub use timeline::{BlockSpan, Poses, Timeline};

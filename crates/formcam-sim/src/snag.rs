@@ -140,9 +140,8 @@ fn solids(fibre: &FreeFibre) -> Vec<Solid> {
     let m = fibre.machine();
     let payout_link = m.points.get(m.roles.payout).map(|p| p.link);
     let exempt = |l: usize| {
-        payout_link.is_some_and(|p| {
-            l == p || m.links[p].parent == Some(l) || m.links[l].parent == Some(p)
-        })
+        payout_link
+            .is_some_and(|p| l == p || m.links[p].parent == Some(l) || m.links[l].parent == Some(p))
     };
     let mut out = Vec::new();
     for (l, link) in m.links.iter().enumerate() {
@@ -346,7 +345,8 @@ impl Checker<'_> {
         let mut cleared = false;
         let mut worst: Option<(f64, f64)> = None;
         for i in 0..n {
-            let s = o.contact_exclusion_mm + (len - o.contact_exclusion_mm) * i as f64 / (n - 1) as f64;
+            let s =
+                o.contact_exclusion_mm + (len - o.contact_exclusion_mm) * i as f64 / (n - 1) as f64;
             let Some(gap) = layer.gap(&(c + dir * s)) else {
                 continue;
             };
@@ -428,21 +428,29 @@ mod tests {
         assert_eq!(c.distance(&Point3::new(5.0, 0.0, 0.0)), 3.0);
         assert_eq!(c.distance(&Point3::new(0.0, 0.0, 4.0)), 3.0);
         assert_eq!(c.distance(&Point3::new(0.0, 0.0, 0.5)), -0.5);
-        assert_eq!(Convex::Sphere(2.0).distance(&Point3::new(0.0, 3.0, 4.0)), 3.0);
+        assert_eq!(
+            Convex::Sphere(2.0).distance(&Point3::new(0.0, 3.0, 4.0)),
+            3.0
+        );
     }
 
     #[test]
     fn a_segment_passing_a_sphere_is_as_far_as_its_nearest_point() {
         // The segment x in [-10, 10] at y = 3, z = 4 passes 5 from the centre.
         let s = Convex::Sphere(2.0);
-        let d = segment_distance(s, &Point3::new(-10.0, 3.0, 4.0), &Point3::new(10.0, 3.0, 4.0));
+        let d = segment_distance(
+            s,
+            &Point3::new(-10.0, 3.0, 4.0),
+            &Point3::new(10.0, 3.0, 4.0),
+        );
         assert!((d - 3.0).abs() < 1e-9, "{d}");
         // Through a box's corner region: the nearest point is an end.
         let b = Convex::Box(Vector3::new(1.0, 1.0, 1.0));
         let d = segment_distance(b, &Point3::new(3.0, 0.0, 0.0), &Point3::new(9.0, 0.0, 0.0));
         assert!((d - 2.0).abs() < 1e-9, "{d}");
-        // Through the solid: the depth of its middle.
+        // Through the solid: the depth of its middle (found within 1e-9 of
+        // the segment's 10 mm, where the distance has slope 1).
         let d = segment_distance(b, &Point3::new(-5.0, 0.0, 0.0), &Point3::new(5.0, 0.0, 0.0));
-        assert!((d + 1.0).abs() < 1e-9, "{d}");
+        assert!((d + 1.0).abs() < 2e-8, "{d}");
     }
 }

@@ -196,10 +196,7 @@ fn linuxcnc_times_our_linuxcnc_program_as_we_do() {
 /// `rs274 -g` of the LinuxCNC program `text` on the 4-axis winder's
 /// configuration (A a wrapped rotary axis): the canonical calls printed.
 fn canon(text: &str, name: &str) -> String {
-    let dir = std::env::temp_dir().join(format!(
-        "formcam-sim-rs274-{name}-{}",
-        std::process::id()
-    ));
+    let dir = std::env::temp_dir().join(format!("formcam-sim-rs274-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(
         dir.join("winder.ini"),
@@ -289,7 +286,12 @@ fn linuxcnc_dwells_as_long_as_our_dwell_blocks() {
     for (c, b) in calls.iter().zip(tl.blocks()) {
         assert_eq!(c.is_some(), b.dwell, "block {} (line {})", b.index, b.line);
         if let Some(t) = c {
-            assert!((t - b.duration_s).abs() <= 0.5e-4, "line {}: {t} vs {}", b.line, b.duration_s);
+            assert!(
+                (t - b.duration_s).abs() <= 0.5e-4,
+                "line {}: {t} vs {}",
+                b.line,
+                b.duration_s
+            );
             assert_eq!(b.from, b.to);
         }
     }

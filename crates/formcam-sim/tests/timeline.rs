@@ -261,7 +261,11 @@ fn a_dwell_is_a_block_that_moves_nothing_for_its_time_in_each_dialect() {
             with.push_str(line);
             with.push('\n');
             let l = line.trim_start_matches(|c: char| c == 'N' || c.is_ascii_digit() || c == ' ');
-            if l.starts_with("G0") || l.starts_with("G1") || l.starts_with('X') || l.starts_with('A') {
+            if l.starts_with("G0")
+                || l.starts_with("G1")
+                || l.starts_with('X')
+                || l.starts_with('A')
+            {
                 motions += 1;
                 if motions == 3 {
                     with.push_str(dwell);

@@ -274,7 +274,7 @@ fn a_dwell_is_a_block_that_moves_nothing_for_its_time_in_each_dialect() {
                 }
             }
         }
-        assert_eq!(third > 0, true, "{dialect:?}");
+        assert!(third > 0, "{dialect:?}");
         with.push_str(dwell);
         with.push('\n');
         let path = format!("program.{}", dialect.extension());

@@ -45,12 +45,17 @@ fn bench(c: &mut Criterion) {
     let fibre = FreeFibre::from_wound(&wound).unwrap();
     let opts = SnagOptions::default();
     eprintln!(
-        "{} blocks, {} layers, {:.0} s of program; snags: {:?}",
+        "{} blocks, {} layers, {:.0} s of program",
         tl.len(),
         layers,
-        tl.duration_s(),
-        check_snag(&tl, &fibre, &opts).unwrap().len()
+        tl.duration_s()
     );
+    for v in check_snag(&tl, &fibre, &opts).unwrap() {
+        eprintln!(
+            "{v} (worst {} mm at block {})",
+            v.worst_value, v.worst_block
+        );
+    }
     c.bench_function("snag check, 1e5 blocks", |b| {
         b.iter(|| check_snag(&tl, &fibre, &opts).unwrap());
     });

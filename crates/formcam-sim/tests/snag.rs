@@ -196,3 +196,54 @@ fn every_demo_winding_program_is_clean_of_snags() {
         assert_eq!(snags, [], "{name}");
     }
 }
+
+#[test]
+fn a_laminate_thicker_than_the_eyes_clearance_snags_where_the_eye_dips_into_it() {
+    // The 4-axis vessel's layer checked on its mandrel grown by 30 mm: the
+    // eye, kept 20 mm out of the clearance zone, runs inside the laminate
+    // where it comes nearest, so the fibre cuts the surface there.
+    let path = examples().join("vessel-axes-4axis.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let job = WindJob::from_toml(&text, &examples()).unwrap();
+    let mut wound = plan_until(&job, Stage::Program).unwrap();
+    let (tl, _) = timeline(&wound);
+    let grown = job
+        .mandrel
+        .grown(30.0)
+        .unwrap()
+        .build(|f| Err(f.to_string()))
+        .unwrap();
+    if let formcam_program::LayerBody::Wind(w) = &mut wound.layers[0].body {
+        w.mandrel = grown;
+    }
+    let fibre = FreeFibre::from_wound(&wound).unwrap();
+    let track = fibre.follow(&tl).unwrap();
+    // The first block at whose end the program's payout point is inside
+    // the grown surface, by the surface's own clearance of that point.
+    let mut sampler = fibre.sampler(&tl, &track);
+    let layer = &fibre.layers()[0];
+    let inside = tl
+        .blocks()
+        .find(|b| {
+            sampler
+                .at(b.index, b.start_s + b.duration_s)
+                .and_then(|st| layer.gap(&st.payout_mandrel))
+                .is_some_and(|g| g < 0.0)
+        })
+        .unwrap();
+    let found = check_snag(&tl, &fibre, &SnagOptions::default()).unwrap();
+    assert_eq!(found.len(), 1, "{found:?}");
+    let v = &found[0];
+    assert_eq!((v.kind, v.axis.as_str()), (ViolationKind::Snag, "mandrel"));
+    // Found no later than there (the fibre's middle may dip in first).
+    assert!(
+        v.block <= inside.index + 1,
+        "{} > {}",
+        v.block,
+        inside.index + 1
+    );
+    assert_eq!(v.line, tl.block(v.block - 1).unwrap().line);
+    // Inside the surface, and as deep as the eye is under it at worst.
+    assert!(v.value < 0.0 && v.limit < 0.0, "{v:?}");
+    assert!(v.worst_value < -5.0 && v.worst_value > -30.0, "{v:?}");
+}

@@ -113,7 +113,7 @@ enum Command {
     },
     /// Checks a written program on a machine: axis limits, velocity,
     /// velocity jump and acceleration per block, and collisions between the
-    /// machine's solids (and the mandrel, with --mandrel). Exit status 0 when
+    /// machine's solids (and, with --mandrel, the mandrel and the free fibre). Exit status 0 when
     /// clean, 3 when a check fails, 2 when an input cannot be read.
     Check {
         /// The program (.mpf, .nc, .ngc, .gcode or .cls: the dialect by its extension).
@@ -121,8 +121,10 @@ enum Command {
         /// The machine file (TOML or URDF), or a shipped machine's name.
         #[arg(long)]
         machine: PathBuf,
-        /// The winding job (TOML or .wind) whose mandrel, grown by the
-        /// laminate layer by layer, is checked against the machine's solids.
+        /// The winding job the program was written from (TOML or .wind): its
+        /// mandrel, grown by the laminate layer by layer, is checked against
+        /// the machine's solids, and the free fibre must not cut the mandrel
+        /// nor come near a solid.
         #[arg(long, value_name = "JOB")]
         mandrel: Option<PathBuf>,
         /// Write the report (JSON: every violation) to this file.

@@ -45,7 +45,7 @@ pub use dialect::Dialect;
 pub use error::{NcError, ProgramFault, Refusal, TemplateProblem, Truncation};
 pub use modulo::{BOUND_DEG, ModuloStyle, keep_within_turns};
 pub use post::write;
-pub use program::{AxisSpec, Block, Feed, Motion, Plane, Program};
+pub use program::{AxisSpec, Block, Dwell, Feed, Motion, Plane, Program};
 pub use read::{read_cldata, read_cldata_lines, read_gcode, read_gcode_in, read_gcode_lines_in};
 pub use template::{Template, write_template};
 pub use toolpath::{Node, NodeKind, Toolpath, ToolpathOptions, read_toolpath};

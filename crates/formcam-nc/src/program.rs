@@ -115,6 +115,19 @@ impl Block {
     }
 }
 
+/// A dwell (`G4`): the axes stand still for a time between two motion
+/// blocks.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Dwell {
+    /// How many motion blocks come before it: it follows
+    /// `blocks[blocks_before - 1]` (0: before the first).
+    pub blocks_before: usize,
+    /// How long the axes stand, s.
+    pub seconds: f64,
+    /// Its line in the program text (1-based).
+    pub line: usize,
+}
+
 /// The working plane (of circular interpolation and tool compensation).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Plane {
@@ -148,6 +161,9 @@ pub struct Program {
     pub header_comments: Vec<String>,
     /// The motion blocks.
     pub blocks: Vec<Block>,
+    /// Dwells (`G4`) read back, in order: the axes stand still between
+    /// motion blocks. formcam's writers write none.
+    pub dwells: Vec<Dwell>,
     /// The working plane, selected in the heading of the G-code dialects
     /// (`G17`/`G18`/`G19`); `None`: not written.
     pub plane: Option<Plane>,
@@ -161,6 +177,7 @@ impl Program {
             axes,
             header_comments: Vec::new(),
             blocks: Vec::new(),
+            dwells: Vec::new(),
             plane: None,
         }
     }

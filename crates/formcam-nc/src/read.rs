@@ -16,8 +16,15 @@
 //! axes, `N` numbers, `%`, `O` numbers (the comment on the `O` line is the
 //! program's name), `(…)` and `;…` comments. Other G codes (`G17`, `G21`,
 //! `G71`, `G54`, …), M codes, `T`, `S` and words of letters that are no NC
-//! axis are passed over; the words after `G4` (dwell), an M code or a `T`
-//! (up to the next G code) too. Errors: arcs (`G2`/`G3`), inch units
+//! axis are passed over; the words after an M code or a `T` (up to the next
+//! G code) too. `G4` (dwell) takes the words after it as its time, in the
+//! dialect's unit ([`Dwell`](crate::Dwell), in [`Program::dwells`]): LinuxCNC
+//! and [`read_gcode`] `P` seconds (rs274ngc); Sinumerik 840D `F` seconds (`S`,
+//! spindle revolutions, is refused: the time depends on a spindle speed the
+//! program does not hold); ISO/Fanuc `X` or `U` seconds, `P` milliseconds
+//! written without a decimal point (with one, the control's setting decides:
+//! refused); Marlin `P` milliseconds, `S` seconds (`S` wins). A `G4` without
+//! its time word, or a negative time, is an error. Errors: arcs (`G2`/`G3`), inch units
 //! (`G20`/`G70`/`G700`), feed per revolution (`G95`), an axis word
 //! (`X Y Z A B C U V W` or `NAME=`) that is not one of the given axes, axis
 //! words before any `G0`/`G1`, a feed block without a feed, `N` or `O` after
@@ -71,6 +78,8 @@ struct Reader<'a> {
     offset: Vec<f64>,
     /// Plain words of modulo axes are wrapped rotary positions (LinuxCNC).
     wrapped: bool,
+    /// The dialect's `G4` words and units.
+    dwell_rule: DwellRule,
     /// The next block follows a re-zero.
     rezeroed: bool,
     pending: Option<String>,
@@ -90,6 +99,7 @@ impl<'a> Reader<'a> {
             pos: vec![0.0; axes.len()],
             offset: vec![0.0; axes.len()],
             wrapped: false,
+            dwell_rule: DwellRule::Rs274,
             rezeroed: false,
             pending: None,
             line: 0,
@@ -136,7 +146,7 @@ impl<'a> Reader<'a> {
 /// absolute angle (in the frame of the last `G92`); for LinuxCNC's wrapped
 /// rotary axes use [`read_gcode_in`].
 pub fn read_gcode(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
-    read_gcode_with(text, axes, false).map(|(p, _)| p)
+    read_gcode_with(text, axes, None).map(|(p, _)| p)
 }
 
 /// Reads G-code as [`read_gcode`] does, as `dialect` means it: with
@@ -154,16 +164,17 @@ pub fn read_gcode_lines_in(
     axes: &[AxisSpec],
     dialect: Dialect,
 ) -> Result<(Program, Vec<usize>), NcError> {
-    read_gcode_with(text, axes, dialect == Dialect::LinuxCnc)
+    read_gcode_with(text, axes, Some(dialect))
 }
 
 fn read_gcode_with(
     text: &str,
     axes: &[AxisSpec],
-    wrapped: bool,
+    dialect: Option<Dialect>,
 ) -> Result<(Program, Vec<usize>), NcError> {
     let mut r = Reader::new(axes)?;
-    r.wrapped = wrapped;
+    r.wrapped = dialect == Some(Dialect::LinuxCnc);
+    r.dwell_rule = DwellRule::of(dialect);
     // Every line lexed first, then interpreted in order.
     let lines = lex::lines(text)
         .enumerate()
@@ -187,8 +198,79 @@ enum Owner {
     Block,
     /// A G code: they are read (before the block's own).
     Code,
-    /// `G4`, an M code or a `T`: their arguments are passed over.
+    /// An M code or a `T`: their arguments are passed over.
     Skipped,
+    /// `G4`: its arguments are its time.
+    Dwell,
+}
+
+/// How a dialect writes a dwell's time (`G4`).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum DwellRule {
+    /// rs274ngc (LinuxCNC): `P` seconds.
+    Rs274,
+    /// Sinumerik 840D: `F` seconds; `S` spindle revolutions.
+    Sinumerik,
+    /// ISO/Fanuc: `X` or `U` seconds; `P` milliseconds without a point.
+    Fanuc,
+    /// Marlin: `P` milliseconds, `S` seconds.
+    Marlin,
+}
+
+impl DwellRule {
+    fn of(dialect: Option<Dialect>) -> Self {
+        match dialect {
+            Some(Dialect::Sinumerik840d) => Self::Sinumerik,
+            Some(Dialect::Iso) => Self::Fanuc,
+            Some(Dialect::MarlinXab) => Self::Marlin,
+            Some(Dialect::LinuxCnc | Dialect::Cldata) | None => Self::Rs274,
+        }
+    }
+
+    /// The dwell's time in seconds from the words after `G4`: (letter,
+    /// value, written with a decimal point).
+    fn seconds(self, words: &[(u8, f64, bool)]) -> Result<f64, String> {
+        let word = |l: u8| words.iter().rev().find(|w| w.0 == l);
+        let t = match self {
+            Self::Rs274 => word(b'P').map(|w| w.1),
+            Self::Sinumerik => {
+                if word(b'S').is_some() {
+                    return Err("G4 S (a dwell in spindle revolutions) cannot be timed: \
+                                the spindle speed is not in the program; give G4 F seconds"
+                        .into());
+                }
+                word(b'F').map(|w| w.1)
+            }
+            Self::Fanuc => match (word(b'X').or_else(|| word(b'U')), word(b'P')) {
+                (Some(w), _) => Some(w.1),
+                (None, Some(&(_, _, true))) => {
+                    return Err(
+                        "G4 P with a decimal point: its unit depends on the control's \
+                                setting; give X seconds or P milliseconds without a point"
+                            .into(),
+                    );
+                }
+                (None, Some(w)) => Some(w.1 / 1000.0),
+                (None, None) => None,
+            },
+            Self::Marlin => word(b'S')
+                .map(|w| w.1)
+                .or_else(|| word(b'P').map(|w| w.1 / 1000.0)),
+        };
+        let words = match self {
+            Self::Rs274 => "P (seconds)",
+            Self::Sinumerik => "F (seconds)",
+            Self::Fanuc => "X or U (seconds) or P (milliseconds)",
+            Self::Marlin => "P (milliseconds) or S (seconds)",
+        };
+        match t {
+            None => Err(format!("G4 without its time: give {words}")),
+            Some(t) if !(t.is_finite() && t >= 0.0) => {
+                Err(format!("G4 dwell time {t} s is negative"))
+            }
+            Some(t) => Ok(t),
+        }
+    }
 }
 
 /// What one G-code line says besides its modes.
@@ -199,6 +281,8 @@ struct GcodeLine {
     /// `G92`.
     preset: bool,
     f_word: Option<f64>,
+    /// `G4` and the words after it: (letter, value, with a decimal point).
+    dwell: Option<Vec<(u8, f64, bool)>>,
 }
 
 impl Reader<'_> {
@@ -257,13 +341,21 @@ impl Reader<'_> {
                             return Err("G92.1, G92.2 and G92.3 are not supported".into());
                         }
                         GCode::Preset => out.preset = true,
-                        GCode::Dwell => owner = Owner::Skipped,
+                        GCode::Dwell => {
+                            owner = Owner::Dwell;
+                            out.dwell.get_or_insert_with(Vec::new);
+                        }
                         _ => {}
                     }
                     self.modal.apply(code);
                 }
                 (b'M' | b'T', _) => owner = Owner::Skipped,
                 (b'N' | b'O', _) | (_, Owner::Skipped) => {}
+                (_, Owner::Dwell) => {
+                    if let Some(d) = out.dwell.as_mut() {
+                        d.push((w.letter, w.value, w.point));
+                    }
+                }
                 (_, Owner::Code) => args.push(w),
                 (_, Owner::Block) => own.push(w),
             }
@@ -310,7 +402,16 @@ impl Reader<'_> {
             mut axis_words,
             preset,
             f_word,
+            dwell,
         } = words;
+        if let Some(d) = dwell {
+            let seconds = self.dwell_rule.seconds(&d)?;
+            self.program.dwells.push(crate::Dwell {
+                blocks_before: self.program.blocks.len(),
+                seconds,
+                line: self.line,
+            });
+        }
         if let Some(f) = f_word {
             if !(f.is_finite() && f > 0.0) {
                 return Err(format!("feed F{f} is not positive"));
@@ -545,10 +646,56 @@ mod tests {
     }
 
     #[test]
+    fn dwells_are_timed_in_each_dialects_unit() {
+        let read = |text: &str, d: Dialect| {
+            read_gcode_lines_in(text, &x_a(), d).map(|(p, _)| {
+                p.dwells
+                    .iter()
+                    .map(|w| (w.blocks_before, w.seconds, w.line))
+                    .collect::<Vec<_>>()
+            })
+        };
+        let head = "G1 F100\nX3\n";
+        let cases = [
+            (Dialect::LinuxCnc, "G4 P1.5", 1.5),
+            (Dialect::Sinumerik840d, "G4 F2.5", 2.5),
+            (Dialect::Iso, "G04 X0.75", 0.75),
+            (Dialect::Iso, "G04 U0.25", 0.25),
+            (Dialect::Iso, "G04 P1500", 1.5),
+            (Dialect::MarlinXab, "G4 P250", 0.25),
+            (Dialect::MarlinXab, "G4 S3", 3.0),
+            (Dialect::MarlinXab, "G4 P250 S3", 3.0),
+        ];
+        for (d, line, t) in cases {
+            let text = format!("{head}{line}\nX4\n");
+            let got = read(&text, d).unwrap_or_else(|e| panic!("{line}: {e}"));
+            assert_eq!(got, [(1, t, 3)], "{d:?} {line}");
+        }
+        // The feed stays what it was: F of `G4 F` is the dwell's.
+        let (p, _) =
+            read_gcode_lines_in("G1 F100\nX3\nG4 F2\nX4\n", &x_a(), Dialect::Sinumerik840d)
+                .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(p.blocks[1].feed, Feed::PerMinute(100.0));
+        for (d, line, says) in [
+            (Dialect::Sinumerik840d, "G4 S10", "spindle revolutions"),
+            (Dialect::Iso, "G04 P1.5", "decimal point"),
+            (Dialect::LinuxCnc, "G4", "without its time"),
+            (Dialect::LinuxCnc, "G4 P-1", "negative"),
+        ] {
+            let text = format!("{head}{line}\n");
+            let e = read(&text, d)
+                .err()
+                .map(|e| e.to_string())
+                .unwrap_or_default();
+            assert!(e.contains(says) && e.contains("line 3"), "{line}: {e}");
+        }
+    }
+
+    #[test]
     fn words_are_read_in_the_order_of_rs274_parsers() {
         // A G code's arguments before the block's own words; the words after
         // an M code, a `T` or `G4` are theirs; a comment or `%` ends them.
-        let text = "G1 F100\nX3 N10 G90 X10\nM3 X7 (c) A5\nT1 % X8\nG4 X9 G1 A6\n";
+        let text = "G1 F100\nX3 N10 G90 X10\nM3 X7 (c) A5\nT1 % X8\nG4 P2 X9 G1 A6\n";
         let p = read_gcode(text, &x_a()).unwrap_or_else(|e| panic!("{e}"));
         let targets: Vec<Vec<f64>> = p.blocks.iter().map(|b| b.target.clone()).collect();
         assert_eq!(
@@ -561,6 +708,13 @@ mod tests {
             ]
         );
         assert_eq!(p.blocks[1].comment.as_deref(), Some("c"));
+        // `G4 P2` (rs274: seconds) before the line's own move.
+        let dwell = crate::Dwell {
+            blocks_before: 3,
+            seconds: 2.0,
+            line: 5,
+        };
+        assert_eq!(p.dwells, [dwell]);
         let (_, lines) = read_gcode_lines_in(text, &x_a(), Dialect::Iso).unwrap();
         assert_eq!(lines, [2, 3, 4, 5]);
         let cls = "PARTNO/P\nFEDRAT/100\nGOTO/1,$\n2\n$$ c\nRAPID\nGOTO/3,4\nFINI\n";

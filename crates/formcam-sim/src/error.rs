@@ -77,6 +77,12 @@ pub enum SimError {
         /// The layer (1-based).
         layer: usize,
     },
+    /// The free fibre cannot be followed along the program.
+    #[error("free fibre: {what}")]
+    Fibre {
+        /// Why.
+        what: String,
+    },
     /// The report could not be serialised.
     #[error("report.json: {0}")]
     Report(#[from] serde_json::Error),

@@ -19,15 +19,22 @@
 //!   the machine's clearance margin apart: a broad phase, then the exact
 //!   distance with parry3d; each pair too close a [`Violation`] of kind
 //!   [`ViolationKind::Collision`] naming both links.
+//! * [`FreeFibre`] — where the free fibre is at each time of a winding
+//!   program: the payout point by forward kinematics, the contact point on
+//!   the mandrel recovered from the winding job planned again, by the
+//!   spindle's angle; [`check_snag`] — the fibre must not cut the mandrel
+//!   nor come near a machine solid ([`SnagOptions`]).
 //! * [`check_files`] — the whole pipeline of `formcam check`: a program file
 //!   and a machine (file or shipped name) to a [`Report`] and its one line.
 
 mod collision;
 mod error;
 mod feed;
+mod fibre;
 mod limits;
 mod pipeline;
 mod report;
+mod snag;
 mod timeline;
 
 pub use collision::{
@@ -36,6 +43,7 @@ pub use collision::{
 };
 pub use error::SimError;
 pub use feed::FeedRule;
+pub use fibre::{FibreLayer, FibreSampler, FibreState, FibreTrack, FreeFibre};
 pub use limits::{
     AxisLimits, RELATIVE_TOLERANCE, RESOLUTION_DEG, RESOLUTION_MM, Violation, ViolationKind,
     check_timeline,
@@ -45,4 +53,5 @@ pub use pipeline::{
     read_program,
 };
 pub use report::Report;
+pub use snag::{SnagOptions, check_snag};
 pub use timeline::{BlockSpan, Poses, Timeline};

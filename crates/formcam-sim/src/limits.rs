@@ -91,6 +91,9 @@ pub enum ViolationKind {
     /// Two solids closer than the machine's clearance margin (`[collision]
     /// margin_mm`), or overlapping.
     Collision,
+    /// The free fibre, from the payout point to its contact point, cutting
+    /// the mandrel or coming nearer a solid than the margin.
+    Snag,
 }
 
 impl ViolationKind {
@@ -102,6 +105,7 @@ impl ViolationKind {
             Self::VelocityJump => "velocity-jump",
             Self::Acceleration => "acceleration",
             Self::Collision => "collision",
+            Self::Snag => "snag",
         }
     }
 }
@@ -112,7 +116,8 @@ impl ViolationKind {
 pub struct Violation {
     /// What is broken.
     pub kind: ViolationKind,
-    /// The axis (NC address); empty for a collision.
+    /// The axis (NC address); for a snag, what the fibre meets (`mandrel`,
+    /// or a solid's link); empty for a collision.
     #[serde(skip_serializing_if = "String::is_empty")]
     pub axis: String,
     /// A collision's two solids: their links' names (`bed` for the bed).
@@ -161,14 +166,20 @@ impl std::fmt::Display for Violation {
                 short(self.limit)
             );
         }
-        let rel = if self.kind == ViolationKind::Position && self.value < self.limit {
+        let below = matches!(self.kind, ViolationKind::Position | ViolationKind::Snag);
+        let rel = if below && self.value < self.limit {
             "<"
         } else {
             ">"
         };
+        let what = if self.kind == ViolationKind::Snag {
+            "fibre to"
+        } else {
+            "axis"
+        };
         write!(
             f,
-            "{} at block {} (line {}, {:.3} s): axis {} {} {} {rel} {} {}",
+            "{} at block {} (line {}, {:.3} s): {what} {} {} {} {rel} {} {}",
             self.kind.name(),
             self.block,
             self.line,

@@ -6,7 +6,8 @@ use formcam_machine::{JointKind, Machine};
 use formcam_nc::{AxisSpec, Dialect, Program, read_cldata_lines, read_gcode_lines_in};
 
 use crate::{
-    AxisLimits, Collisions, FeedRule, Laminate, Report, SimError, Timeline, check_timeline,
+    AxisLimits, Collisions, FeedRule, FreeFibre, Laminate, Report, SimError, SnagOptions, Timeline,
+    check_snag, check_timeline,
 };
 
 /// The program axes of a machine, as formcam's programs for it name them:
@@ -134,8 +135,11 @@ pub fn check_text_in(
 /// What a check looks at besides the program and the machine.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct CheckOptions {
-    /// A winding job (TOML) whose mandrel, grown by its laminate layer by
-    /// layer, is checked against the machine's solids (`--mandrel JOB`).
+    /// The winding job (TOML or `.wind`) the program was written from
+    /// (`--mandrel JOB`): its mandrel, grown by its laminate layer by layer,
+    /// is checked against the machine's solids, and its free fibre
+    /// ([`check_snag`] with [`SnagOptions::default`]) against the mandrel
+    /// and the solids.
     pub mandrel: Option<PathBuf>,
 }
 
@@ -177,7 +181,22 @@ pub fn check_files_with(
         None => None,
     };
     let text = formcam_files::read_text(program)?;
-    let report = check_text_in(program, &text, &m, &name, mesh_dir, laminate.as_ref())?;
+    let mut report = check_text_in(program, &text, &m, &name, mesh_dir, laminate.as_ref())?;
+    if let Some(job) = &options.mandrel {
+        let fibre = FreeFibre::from_job_file(job)?.with_machine(m)?;
+        let (p, lines, dialect) = read_program(program, &text, fibre.machine())?;
+        let tl = Timeline::new(&p, &lines, FeedRule::of(dialect), fibre.machine())?;
+        report
+            .violations
+            .extend(check_snag(&tl, &fibre, &SnagOptions::default())?);
+        report.violations.sort_by(|a, b| {
+            a.time_s
+                .total_cmp(&b.time_s)
+                .then(a.block.cmp(&b.block))
+                .then(a.kind.cmp(&b.kind))
+        });
+        report.clean = report.violations.is_empty();
+    }
     Ok(CheckRun {
         line: report.line(),
         report,

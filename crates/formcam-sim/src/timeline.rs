@@ -20,6 +20,8 @@ pub struct Timeline {
     /// Each block's start time, then the end of the last: `n + 1` values.
     starts: Vec<f64>,
     kinds: Vec<Motion>,
+    /// Whether each block is a dwell (`G4`): no axis moves for its time.
+    dwells: Vec<bool>,
     lines: Vec<usize>,
     /// Each block's relative time uncertainty from the written text.
     rel_dt: Vec<f64>,
@@ -32,8 +34,10 @@ pub struct BlockSpan<'a> {
     pub index: usize,
     /// Its line in the program text (1-based).
     pub line: usize,
-    /// Rapid or linear.
+    /// Rapid or linear (a dwell is linear: no axis moves).
     pub kind: Motion,
+    /// A dwell (`G4`): the axes stand still for its time.
+    pub dwell: bool,
     /// When it starts, s.
     pub start_s: f64,
     /// How long it takes, s.
@@ -84,7 +88,10 @@ impl Timeline {
 
     /// The timeline of `program` from the axis values `start` (NC units),
     /// rapids at `rapid_per_s` per axis (NC units per second; the slowest
-    /// axis decides; an infinite rate takes no time).
+    /// axis decides; an infinite rate takes no time). Each of the program's
+    /// dwells ([`Program::dwells`]) is a block of its own, on its own line,
+    /// that moves nothing for its time, so the timeline's block `i` is the
+    /// program's only when the program has no dwell.
     pub fn from_start(
         program: &Program,
         lines: &[usize],
@@ -113,7 +120,20 @@ impl Timeline {
             .sum::<f64>()
             .sqrt();
         let mut t = 0.0;
+        let mut kinds = Vec::with_capacity(n);
+        let mut dwells = Vec::with_capacity(n);
+        let mut block_lines = Vec::with_capacity(n);
+        let mut pending_dwells = program.dwells.iter().peekable();
         for (i, b) in program.blocks.iter().enumerate() {
+            // Dwells before this block: blocks that move nothing for their time.
+            while let Some(d) = pending_dwells.next_if(|d| d.blocks_before <= i) {
+                dwell_block(&mut points, w, &mut starts, &mut t, d.seconds);
+                rel_dt.push(0.0);
+                kinds.push(Motion::Linear);
+                dwells.push(true);
+                block_lines.push(d.line);
+            }
+            let from_at = points.len() - w;
             let fail = |what: String| SimError::Block {
                 block: i + 1,
                 line: lines[i],
@@ -122,7 +142,7 @@ impl Timeline {
             if b.target.len() != w || b.target.iter().any(|v| !v.is_finite()) {
                 return Err(fail(format!("needs {w} finite axis values")));
             }
-            let from = &points[i * w..(i + 1) * w];
+            let from = &points[from_at..from_at + w];
             let (d, rel) = match (b.kind, b.feed) {
                 (Motion::Rapid, _) => (
                     from.iter()
@@ -155,14 +175,25 @@ impl Timeline {
             rel_dt.push(rel);
             t += d;
             points.extend_from_slice(&b.target);
+            kinds.push(b.kind);
+            dwells.push(false);
+            block_lines.push(lines[i]);
+        }
+        for d in pending_dwells {
+            dwell_block(&mut points, w, &mut starts, &mut t, d.seconds);
+            rel_dt.push(0.0);
+            kinds.push(Motion::Linear);
+            dwells.push(true);
+            block_lines.push(d.line);
         }
         starts.push(t);
         Ok(Self {
             axes: program.axes.clone(),
             points,
             starts,
-            kinds: program.blocks.iter().map(|b| b.kind).collect(),
-            lines: lines.to_vec(),
+            kinds,
+            dwells,
+            lines: block_lines,
             rel_dt,
         })
     }
@@ -203,6 +234,7 @@ impl Timeline {
             index: i,
             line: self.lines[i],
             kind,
+            dwell: self.dwells[i],
             start_s: self.starts[i],
             duration_s: self.starts[i + 1] - self.starts[i],
             from: &self.points[i * w..(i + 1) * w],
@@ -288,6 +320,15 @@ impl Timeline {
             points,
         }
     }
+}
+
+/// Appends a dwell of `seconds` at time `t`: the axes stay where the last
+/// block ended.
+fn dwell_block(points: &mut Vec<f64>, w: usize, starts: &mut Vec<f64>, t: &mut f64, seconds: f64) {
+    let at = points.len() - w;
+    points.extend_from_within(at..at + w);
+    starts.push(*t);
+    *t += seconds;
 }
 
 #[cfg(test)]

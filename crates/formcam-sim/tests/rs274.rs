@@ -129,38 +129,7 @@ fn linuxcnc_times_our_linuxcnc_program_as_we_do() {
     let mut text = String::new();
     write(&p, Dialect::LinuxCnc, &mut text).unwrap();
 
-    let dir = std::env::temp_dir().join(format!("formcam-sim-rs274-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(
-        dir.join("winder.ini"),
-        "[RS274NGC]\nPARAMETER_FILE = winder.var\n\n[TRAJ]\nCOORDINATES = XYZAB\n\
-         LINEAR_UNITS = mm\nANGULAR_UNITS = degree\n\n[AXIS_A]\nWRAPPED_ROTARY = 1\n",
-    )
-    .unwrap();
-    std::fs::write(dir.join("winder.var"), "").unwrap();
-    std::fs::write(dir.join("winder.tbl"), "T1 P1 D0 Z0 ;\n").unwrap();
-    std::fs::write(dir.join("program.ngc"), &text).unwrap();
-    let run = Command::new("rs274")
-        .current_dir(&dir)
-        .args([
-            "-i",
-            "winder.ini",
-            "-t",
-            "winder.tbl",
-            "-v",
-            "winder.var",
-            "-g",
-        ])
-        .args(["program.ngc", "canon.txt"])
-        .stdin(Stdio::null())
-        .output()
-        .unwrap();
-    let printed = std::fs::read_to_string(dir.join("canon.txt")).unwrap_or_default();
-    assert!(
-        run.status.success(),
-        "rs274 failed: {}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    let printed = canon(&text, "feeds");
     let calls = moves(&printed);
 
     let (read, lines, d) = read_program(Path::new("program.ngc"), &text, &m).unwrap();
@@ -208,5 +177,108 @@ fn linuxcnc_times_our_linuxcnc_program_as_we_do() {
         here.clone_from(&c.end);
     }
     assert!(feeds > 60);
+}
+
+/// `rs274 -g` of the LinuxCNC program `text` on the 4-axis winder's
+/// configuration (A a wrapped rotary axis): the canonical calls printed.
+fn canon(text: &str, name: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("formcam-sim-rs274-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("winder.ini"),
+        "[RS274NGC]\nPARAMETER_FILE = winder.var\n\n[TRAJ]\nCOORDINATES = XYZAB\n\
+         LINEAR_UNITS = mm\nANGULAR_UNITS = degree\n\n[AXIS_A]\nWRAPPED_ROTARY = 1\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("winder.var"), "").unwrap();
+    std::fs::write(dir.join("winder.tbl"), "T1 P1 D0 Z0 ;\n").unwrap();
+    std::fs::write(dir.join("program.ngc"), text).unwrap();
+    let run = Command::new("rs274")
+        .current_dir(&dir)
+        .args([
+            "-i",
+            "winder.ini",
+            "-t",
+            "winder.tbl",
+            "-v",
+            "winder.var",
+            "-g",
+        ])
+        .args(["program.ngc", "canon.txt"])
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    let printed = std::fs::read_to_string(dir.join("canon.txt")).unwrap_or_default();
+    assert!(
+        run.status.success(),
+        "rs274 failed: {}",
+        String::from_utf8_lossy(&run.stderr)
+    );
     std::fs::remove_dir_all(&dir).ok();
+    printed
+}
+
+/// The dwells and moves of `rs274 -g`'s output in order: `Some(seconds)`
+/// for a `DWELL`, `None` for a traverse or feed.
+fn dwells(text: &str) -> Vec<Option<f64>> {
+    text.lines()
+        .filter_map(|line| line.split("N..... ").nth(1))
+        .filter_map(|call| {
+            let (name, rest) = call.split_once('(').unwrap_or((call, ""));
+            match name {
+                "DWELL" => Some(Some(numbers(rest.trim_end_matches(')'))[0])),
+                "STRAIGHT_TRAVERSE" | "STRAIGHT_FEED" => Some(None),
+                _ => None,
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn linuxcnc_dwells_as_long_as_our_dwell_blocks() {
+    if !rs274_present() {
+        return;
+    }
+    let m = shipped("winder-4axis").unwrap().machine().unwrap();
+    let mut p = Program::new("DWELL", program_axes(&m));
+    p.blocks.push(Block::rapid(vec![0.0, 100.0, 250.0, 0.0]));
+    for i in 0..6 {
+        let s = f64::from(i);
+        p.blocks.push(Block::linear(
+            vec![30.0 * s, 100.0 + 10.0 * s, 250.0, 2.0 * s],
+            Feed::InverseTime(0.5),
+        ));
+    }
+    let mut text = String::new();
+    write(&p, Dialect::LinuxCnc, &mut text).unwrap();
+    // A dwell after every second feed block: `G4 P` seconds.
+    let mut with = String::new();
+    let mut feeds = 0;
+    for line in text.lines() {
+        with.push_str(line);
+        with.push('\n');
+        if line.contains("G1") || line.starts_with('X') || line.starts_with('A') {
+            feeds += 1;
+            if feeds % 2 == 0 {
+                with.push_str(&format!("G4 P{}\n", 0.25 * f64::from(feeds)));
+            }
+        }
+    }
+    let calls = dwells(&canon(&with, "dwell"));
+    let (read, lines, d) = read_program(Path::new("program.ngc"), &with, &m).unwrap();
+    let tl = Timeline::new(&read, &lines, FeedRule::of(d), &m).unwrap();
+    assert_eq!(calls.len(), tl.len(), "{with}");
+    assert_eq!(calls.iter().filter(|c| c.is_some()).count(), 3);
+    for (c, b) in calls.iter().zip(tl.blocks()) {
+        assert_eq!(c.is_some(), b.dwell, "block {} (line {})", b.index, b.line);
+        if let Some(t) = c {
+            assert!(
+                (t - b.duration_s).abs() <= 0.5e-4,
+                "line {}: {t} vs {}",
+                b.line,
+                b.duration_s
+            );
+            assert_eq!(b.from, b.to);
+        }
+    }
 }

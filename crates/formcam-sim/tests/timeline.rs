@@ -238,3 +238,65 @@ fn a_program_within_every_limit_is_clean() {
         assert_eq!(r.line(), format!("clean: 6 blocks, {:.3} s", r.duration_s));
     }
 }
+
+#[test]
+fn a_dwell_is_a_block_that_moves_nothing_for_its_time_in_each_dialect() {
+    let m = machine("winder-4axis");
+    let p = four_axis_program(&m);
+    // Each dialect's way of writing 1.5 s, and the time without dwells.
+    for (dialect, dwell) in [
+        (Dialect::LinuxCnc, "G4 P1.5"),
+        (Dialect::Sinumerik840d, "G4 F1.5"),
+        (Dialect::Iso, "G04 P1500"),
+        (Dialect::Iso, "G04 X1.5"),
+        (Dialect::MarlinXab, "G4 P1500"),
+        (Dialect::MarlinXab, "G4 S1.5"),
+    ] {
+        let (text, plain) = written(&p, dialect, &m);
+        // After the third motion line, and at the end.
+        let mut with = String::new();
+        let mut motions = 0;
+        let mut third = 0;
+        for (i, line) in text.lines().enumerate() {
+            with.push_str(line);
+            with.push('\n');
+            let l = line.trim_start_matches(|c: char| c == 'N' || c.is_ascii_digit() || c == ' ');
+            if l.starts_with("G0")
+                || l.starts_with("G1")
+                || l.starts_with('X')
+                || l.starts_with('A')
+            {
+                motions += 1;
+                if motions == 3 {
+                    with.push_str(dwell);
+                    with.push('\n');
+                    third = i + 2;
+                }
+            }
+        }
+        assert!(third > 0, "{dialect:?}");
+        with.push_str(dwell);
+        with.push('\n');
+        let path = format!("program.{}", dialect.extension());
+        let (read, lines, d) = read_program(Path::new(&path), &with, &m).unwrap();
+        let tl = Timeline::new(&read, &lines, FeedRule::of(d), &m).unwrap();
+        let what = format!("{dialect:?} {dwell}");
+        assert_eq!(tl.len(), plain.len() + 2, "{what}");
+        close(tl.duration_s(), plain.duration_s() + 3.0, &what);
+        let dwells: Vec<_> = tl.blocks().filter(|b| b.dwell).collect();
+        assert_eq!(dwells.len(), 2, "{what}");
+        let first = dwells[0];
+        assert_eq!(first.line, third, "{what}");
+        close(first.duration_s, 1.5, &what);
+        assert_eq!(first.from, first.to);
+        // It follows the third block, where that one ended.
+        let before = tl.block(first.index - 1).unwrap();
+        close(first.start_s, before.start_s + before.duration_s, &what);
+        assert_eq!(first.from, before.to);
+        let mid = tl.sample(first.start_s + 0.75);
+        assert_eq!(mid, before.to, "{what}");
+        assert_eq!(tl.block_at(first.start_s + 0.75), Some(first.index));
+        // The last: after every block.
+        close(dwells[1].start_s, plain.duration_s() + 1.5, &what);
+    }
+}

@@ -12,6 +12,7 @@
 
 mod error;
 mod folder;
+mod http;
 mod page;
 pub mod request;
 mod scene;
@@ -24,5 +25,5 @@ pub use page::Page;
 pub use scene::{
     LinkScene, MERIDIAN_POINTS, MachineScene, MandrelScene, PATH_POINTS, Solid, SolidShape, thin,
 };
-pub use server::{DEFAULT_SAMPLES, MAX_SAMPLES, View, ViewOptions, ViewServer};
+pub use server::{DEFAULT_SAMPLES, MAX_CONNECTIONS, MAX_SAMPLES, View, ViewOptions, ViewServer};
 pub use timeline::{AxisHead, Sample, Timeline, TimelineHead, axis_specs, block_lines};

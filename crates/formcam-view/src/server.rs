@@ -1,19 +1,21 @@
 //! The HTTP server: on 127.0.0.1 only, GET only, the page, the result
 //! folder's files and the JSON the page draws.
 
-use std::io::Cursor;
-use std::net::SocketAddr;
+use std::io::{BufWriter, Write};
+use std::net::{Ipv4Addr, SocketAddr, TcpListener, TcpStream};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::thread;
+use std::time::Duration;
 
 use serde::Serialize;
-use tiny_http::{Header, Method, Request, Response};
 
 use crate::ViewError;
 use crate::folder::RunFolder;
+use crate::http::{self, Answer, Incoming};
 use crate::page::Page;
-use crate::request::{MAX_HEADER_BYTES, Refusal, Target, file_under};
+use crate::request::{Refusal, Target, file_under};
 use crate::scene::{MachineScene, MandrelScene};
 use crate::timeline::{Sample, Timeline, TimelineHead};
 
@@ -22,9 +24,6 @@ pub const DEFAULT_SAMPLES: usize = 2000;
 
 /// The most samples of `/api/timeline`.
 pub const MAX_SAMPLES: usize = 100_000;
-
-/// Threads answering requests.
-const WORKERS: usize = 4;
 
 /// How to start a view.
 #[derive(Debug, Clone, Default)]
@@ -214,7 +213,7 @@ fn content_type(path: &Path) -> &'static str {
 
 /// A view listening on 127.0.0.1.
 pub struct ViewServer {
-    server: Arc<tiny_http::Server>,
+    listener: TcpListener,
     view: Arc<View>,
     addr: SocketAddr,
 }
@@ -227,17 +226,14 @@ impl ViewServer {
     /// The result's [`ViewError`], or [`ViewError::Bind`].
     pub fn bind(root: &Path, options: &ViewOptions, page: Page) -> Result<Self, ViewError> {
         let view = View::open(root, options.machine.as_deref(), page)?;
-        let bind = |e: Box<dyn std::error::Error + Send + Sync>| ViewError::Bind {
+        let bind = |source| ViewError::Bind {
             port: options.port,
-            source: std::io::Error::other(e),
+            source,
         };
-        let server = tiny_http::Server::http(("127.0.0.1", options.port)).map_err(bind)?;
-        let addr = server
-            .server_addr()
-            .to_ip()
-            .ok_or_else(|| bind("not an IP address".into()))?;
+        let listener = TcpListener::bind((Ipv4Addr::LOCALHOST, options.port)).map_err(bind)?;
+        let addr = listener.local_addr().map_err(bind)?;
         Ok(Self {
-            server: Arc::new(server),
+            listener,
             view: Arc::new(view),
             addr,
         })
@@ -253,72 +249,101 @@ impl ViewServer {
         self.addr
     }
 
-    /// Answers requests until the process ends.
+    /// Answers requests until the process ends: every connection on a
+    /// thread of its own (at most [`MAX_CONNECTIONS`] at once).
     pub fn serve(self) {
-        let workers: Vec<_> = (1..WORKERS)
-            .map(|_| {
-                let (server, view) = (Arc::clone(&self.server), Arc::clone(&self.view));
-                thread::spawn(move || work(&server, &view))
-            })
-            .collect();
-        work(&self.server, &self.view);
-        for w in workers {
-            let _ = w.join();
+        let live = Arc::new(AtomicUsize::new(0));
+        for stream in self.listener.incoming() {
+            let Ok(stream) = stream else {
+                // Out of descriptors or the like: try again in a moment.
+                thread::sleep(Duration::from_millis(20));
+                continue;
+            };
+            if live.load(Ordering::Acquire) >= MAX_CONNECTIONS {
+                continue;
+            }
+            live.fetch_add(1, Ordering::AcqRel);
+            let (view, held) = (Arc::clone(&self.view), Arc::clone(&live));
+            let spawned = thread::Builder::new()
+                .name("formcam-view connection".into())
+                .spawn(move || {
+                    // A client gone before its answer is no error of the server.
+                    let _ = connection(&view, &stream);
+                    held.fetch_sub(1, Ordering::AcqRel);
+                });
+            if spawned.is_err() {
+                live.fetch_sub(1, Ordering::AcqRel);
+            }
         }
     }
 
-    /// Answers requests on background threads (tests, embedding).
+    /// Answers requests on a background thread (tests, embedding).
     pub fn spawn(self) -> thread::JoinHandle<()> {
         thread::spawn(move || self.serve())
     }
 }
 
-fn work(server: &tiny_http::Server, view: &View) {
-    while let Ok(request) = server.recv() {
-        // A client gone before its answer is no error of the server.
-        let _ = respond(view, request);
+/// The most connections answered at once; more are closed unanswered.
+pub const MAX_CONNECTIONS: usize = 64;
+
+/// Answers the requests of one connection, one after another, until the
+/// client closes it, asks to, idles past [`http::IDLE`] or is refused.
+fn connection(view: &View, stream: &TcpStream) -> std::io::Result<()> {
+    stream.set_read_timeout(Some(http::IDLE))?;
+    stream.set_write_timeout(Some(http::IDLE))?;
+    let _ = stream.set_nodelay(true);
+    let mut requests = http::reader(stream)?;
+    let mut out = BufWriter::new(stream);
+    loop {
+        let head = match http::read_head(&mut requests)? {
+            Incoming::End => return Ok(()),
+            Incoming::Refused(r) => {
+                refuse(&mut out, r)?;
+                http::close(stream, true);
+                return Ok(());
+            }
+            Incoming::Head(head) => head,
+        };
+        let refused = if head.method != "GET" {
+            Some(Refusal::Method)
+        } else if head.body {
+            Some(Refusal::Body)
+        } else {
+            None
+        };
+        if let Some(r) = refused {
+            refuse(&mut out, r)?;
+            http::close(stream, true);
+            return Ok(());
+        }
+        let (status, kind, body) = view.answer(&head.target);
+        http::write_answer(
+            &mut out,
+            &Answer {
+                status,
+                kind,
+                body: &body,
+                allow_get: false,
+                close: head.close,
+            },
+        )?;
+        if head.close {
+            http::close(stream, false);
+            return Ok(());
+        }
     }
 }
 
-fn respond(view: &View, request: Request) -> std::io::Result<()> {
-    let header_bytes: usize = request
-        .headers()
-        .iter()
-        .map(|h| h.field.as_str().as_str().len() + h.value.as_str().len() + 4)
-        .sum();
-    let refused = if *request.method() != Method::Get {
-        Some(Refusal::Method)
-    } else if header_bytes > MAX_HEADER_BYTES {
-        Some(Refusal::HeadersTooLarge)
-    } else if request.body_length().is_some_and(|n| n > 0) {
-        Some(Refusal::Body)
-    } else {
-        None
-    };
-    let (status, kind, body) = match refused {
-        Some(r) => (r.status(), TEXT, format!("{r}\n").into_bytes()),
-        None => view.answer(request.url()),
-    };
-    let mut response = Response::new(
-        status.into(),
-        Vec::new(),
-        Cursor::new(body.clone()),
-        Some(body.len()),
-        None,
-    );
-    for (k, v) in [
-        ("Content-Type", kind),
-        ("Cache-Control", "no-store"),
-        ("X-Content-Type-Options", "nosniff"),
-    ] {
-        if let Ok(h) = Header::from_bytes(k.as_bytes(), v.as_bytes()) {
-            response.add_header(h);
-        }
-    }
-    if refused == Some(Refusal::Method)
-        && let Ok(h) = Header::from_bytes(&b"Allow"[..], &b"GET"[..])
-    {
-        response.add_header(h);
-    }
-    request.respond(response)
+/// Answers a refused request (the connection closes after it).
+fn refuse<W: Write>(out: &mut W, r: Refusal) -> std::io::Result<()> {
+    http::write_answer(
+        out,
+        &Answer {
+            status: r.status(),
+            kind: TEXT,
+            body: format!("{r}\n").as_bytes(),
+            allow_get: r == Refusal::Method,
+            close: true,
+        },
+    )
 }

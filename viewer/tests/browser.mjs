@@ -1,12 +1,20 @@
 // Drives the page `formcam view` serves in headless Chromium (Debian's,
 // through playwright-core): console errors, the canvas drawn and changed by
 // a seek, the state shown at several seeks, screenshots of each view, time
-// to interactive and frames per second while playing.
+// to interactive and frames per second while playing. Every request the
+// page makes is followed to its end: a page not ready within READY_S fails
+// naming the requests that never finished, and the whole run is bounded by
+// TOTAL_S, so a stalled load fails instead of holding its caller.
 //
 //   node viewer/tests/browser.mjs URL SCREENSHOT_DIR OUT_JSON [PLAY_SPEED]
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
+
+/** Seconds the page has to become ready (`window.formcam.ready`). */
+const READY_S = Number(process.env.FORMCAM_READY_S ?? 45);
+/** Seconds the whole run may take. */
+const TOTAL_S = 150;
 
 const [url, shots, out, speedArg] = process.argv.slice(2);
 if (!url || !shots || !out) {
@@ -14,6 +22,28 @@ if (!url || !shots || !out) {
   process.exit(2);
 }
 mkdirSync(shots, { recursive: true });
+
+const started = Date.now();
+const errors = [];
+let step = 'launch';
+// Every request: its path, when it started and ended (ms from the start),
+// its status and body size; `end` stays null for one that never finished.
+const requests = [];
+const byRequest = new Map();
+const pathOf = (u) => (u.startsWith(url) ? `/${u.slice(url.length)}` : u);
+const unfinished = () => requests.filter((r) => r.end === null)
+  .map((r) => `${r.path} (asked at ${(r.start / 1000).toFixed(1)} s${r.status ? `, status ${r.status} received` : ', no answer'})`);
+const report = (extra) => writeFileSync(out, JSON.stringify({ errors, requests, ...extra }, null, 1));
+
+// A run that stops answering fails instead of holding its caller.
+const watchdog = setTimeout(() => {
+  const open = unfinished();
+  errors.push(`driver: not done within ${TOTAL_S} s (at: ${step})` +
+    (open.length ? `; never finished: ${open.join(', ')}` : ''));
+  report({});
+  console.error(errors.at(-1));
+  process.exit(1);
+}, TOTAL_S * 1000);
 
 const browser = await chromium.launch({
   executablePath: process.env.FORMCAM_CHROMIUM ?? '/usr/bin/chromium',
@@ -26,27 +56,59 @@ const browser = await chromium.launch({
     '--ignore-gpu-blocklist',
   ],
 });
-const errors = [];
-let step = 'launch';
-// A page that stops answering fails the test instead of holding it.
-const watchdog = setTimeout(() => {
-  errors.push(`driver: no answer from the page within 300 s (at: ${step})`);
-  writeFileSync(out, JSON.stringify({ errors }, null, 1));
-  process.exit(1);
-}, 300_000);
 try {
   const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-  page.setDefaultTimeout(120_000);
+  page.setDefaultTimeout(60_000);
   page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
   page.on('pageerror', (e) => errors.push(`page: ${e}`));
-  page.on('requestfailed', (r) => errors.push(`request failed: ${r.url()}`));
-  // Nothing is fetched from anywhere but the server.
-  page.on('request', (r) => { if (!r.url().startsWith(url)) errors.push(`outside request: ${r.url()}`); });
+  page.on('request', (r) => {
+    // Nothing is fetched from anywhere but the server.
+    if (!r.url().startsWith(url)) errors.push(`outside request: ${r.url()}`);
+    const entry = { path: pathOf(r.url()), start: Date.now() - started, end: null, status: null, bytes: null };
+    requests.push(entry);
+    byRequest.set(r, entry);
+  });
+  page.on('response', (resp) => {
+    const entry = byRequest.get(resp.request());
+    if (entry) entry.status = resp.status();
+  });
+  page.on('requestfinished', async (r) => {
+    const entry = byRequest.get(r);
+    if (!entry) return;
+    entry.end = Date.now() - started;
+    try {
+      entry.bytes = (await r.sizes()).responseBodySize;
+    } catch {
+      // The page may be gone; the size is only for the report.
+    }
+  });
+  page.on('requestfailed', (r) => {
+    const entry = byRequest.get(r);
+    if (entry) entry.end = Date.now() - started;
+    errors.push(`request failed: ${pathOf(r.url())} (${r.failure()?.errorText ?? 'no reason given'})`);
+  });
 
-  const opened = Date.now();
+const opened = Date.now();
   step = 'open';
-  await page.goto(url);
-  await page.evaluate(() => window.formcam.ready);
+  let timer;
+  const late = new Promise((_, reject) => {
+    timer = setTimeout(() => {
+      const open = unfinished();
+      reject(new Error(`the page was not ready within ${READY_S} s; ` +
+        (open.length ? `never finished: ${open.join(', ')}` : 'every request finished')));
+    }, READY_S * 1000);
+  });
+  try {
+    await Promise.race([
+      (async () => {
+        await page.goto(url);
+        await page.evaluate(() => window.formcam.ready);
+      })(),
+      late,
+    ]);
+  } finally {
+    clearTimeout(timer);
+  }
   const tti_s = (Date.now() - opened) / 1000;
 
   // The canvas as drawn: how many colours, and a hash of its pixels.
@@ -99,11 +161,14 @@ try {
     return (f.frames() - n0) / ((performance.now() - t0) / 1000);
   }, speed);
   await page.screenshot({ path: join(shots, 'playing.png') });
-  writeFileSync(out, JSON.stringify({ errors, tti_s, fps, speed, duration_s, before, after, states }, null, 1));
+  report({ tti_s, fps, speed, duration_s, before, after, states });
 } catch (e) {
-  errors.push(`driver: ${e}`);
-  writeFileSync(out, JSON.stringify({ errors }, null, 1));
+  errors.push(`driver: ${e instanceof Error ? e.message : e} (at: ${step})`);
+  report({});
+  console.error(errors.at(-1));
+  process.exitCode = 1;
 } finally {
-  clearTimeout(watchdog);
+  step = 'close';
   await browser.close();
+  clearTimeout(watchdog);
 }

@@ -12,7 +12,6 @@
 
 mod error;
 mod folder;
-mod http;
 mod page;
 pub mod request;
 mod scene;

@@ -1,21 +1,27 @@
 //! The HTTP server: on 127.0.0.1 only, GET only, the page, the result
 //! folder's files and the JSON the page draws.
 
-use std::io::{BufWriter, Write};
-use std::net::{Ipv4Addr, SocketAddr, TcpListener, TcpStream};
+use std::net::{Ipv4Addr, SocketAddr, TcpListener};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::thread;
 use std::time::Duration;
 
+use axum::Router;
+use axum::body::Body;
+use axum::extract::{Request, State};
+use axum::http::{HeaderValue, Method, StatusCode, header};
+use axum::response::Response;
+use hyper::server::conn::http1;
+use hyper_util::rt::{TokioIo, TokioTimer};
+use hyper_util::service::TowerToHyperService;
 use serde::Serialize;
 
 use crate::ViewError;
 use crate::folder::RunFolder;
-use crate::http::{self, Answer, Incoming};
 use crate::page::Page;
-use crate::request::{Refusal, Target, file_under};
+use crate::request::{MAX_HEADER_BYTES, MAX_URL_BYTES, Refusal, Target, file_under};
 use crate::scene::{MachineScene, MandrelScene};
 use crate::timeline::{Sample, Timeline, TimelineHead};
 
@@ -232,6 +238,7 @@ impl ViewServer {
         };
         let listener = TcpListener::bind((Ipv4Addr::LOCALHOST, options.port)).map_err(bind)?;
         let addr = listener.local_addr().map_err(bind)?;
+        listener.set_nonblocking(true).map_err(bind)?;
         Ok(Self {
             listener,
             view: Arc::new(view),
@@ -249,32 +256,18 @@ impl ViewServer {
         self.addr
     }
 
-    /// Answers requests until the process ends: every connection on a
-    /// thread of its own (at most [`MAX_CONNECTIONS`] at once).
+    /// Answers requests until the process ends: every connection served
+    /// on its own (at most [`MAX_CONNECTIONS`] at once), HTTP/1.1 with
+    /// kept-alive connections. Returns at once only where the system
+    /// cannot start the server's runtime (no threads or descriptors left).
     pub fn serve(self) {
-        let live = Arc::new(AtomicUsize::new(0));
-        for stream in self.listener.incoming() {
-            let Ok(stream) = stream else {
-                // Out of descriptors or the like: try again in a moment.
-                thread::sleep(Duration::from_millis(20));
-                continue;
-            };
-            if live.load(Ordering::Acquire) >= MAX_CONNECTIONS {
-                continue;
-            }
-            live.fetch_add(1, Ordering::AcqRel);
-            let (view, held) = (Arc::clone(&self.view), Arc::clone(&live));
-            let spawned = thread::Builder::new()
-                .name("formcam-view connection".into())
-                .spawn(move || {
-                    // A client gone before its answer is no error of the server.
-                    let _ = connection(&view, &stream);
-                    held.fetch_sub(1, Ordering::AcqRel);
-                });
-            if spawned.is_err() {
-                live.fetch_sub(1, Ordering::AcqRel);
-            }
-        }
+        let Ok(runtime) = tokio::runtime::Builder::new_current_thread()
+            .enable_all()
+            .build()
+        else {
+            return;
+        };
+        runtime.block_on(accept(self.listener, self.view));
     }
 
     /// Answers requests on a background thread (tests, embedding).
@@ -286,64 +279,174 @@ impl ViewServer {
 /// The most connections answered at once; more are closed unanswered.
 pub const MAX_CONNECTIONS: usize = 64;
 
-/// Answers the requests of one connection, one after another, until the
-/// client closes it, asks to, idles past [`http::IDLE`] or is refused.
-fn connection(view: &View, stream: &TcpStream) -> std::io::Result<()> {
-    stream.set_read_timeout(Some(http::IDLE))?;
-    stream.set_write_timeout(Some(http::IDLE))?;
-    let _ = stream.set_nodelay(true);
-    let mut requests = http::reader(stream)?;
-    let mut out = BufWriter::new(stream);
+/// How long a connection waits for a request's head (a kept connection
+/// for its next request) before it is closed.
+const IDLE: Duration = Duration::from_secs(60);
+
+/// Accepts connections on `listener` and serves each as a task of its own.
+async fn accept(listener: TcpListener, view: Arc<View>) {
+    let Ok(listener) = tokio::net::TcpListener::from_std(listener) else {
+        return;
+    };
+    let app = Router::new().fallback(answer).with_state(view);
+    let live = Arc::new(AtomicUsize::new(0));
     loop {
-        let head = match http::read_head(&mut requests)? {
-            Incoming::End => return Ok(()),
-            Incoming::Refused(r) => {
-                refuse(&mut out, r)?;
-                http::close(stream, true);
-                return Ok(());
+        let stream = match listener.accept().await {
+            Ok((stream, _)) => stream,
+            Err(_) => {
+                // Out of descriptors or the like: try again in a moment.
+                tokio::time::sleep(Duration::from_millis(20)).await;
+                continue;
             }
-            Incoming::Head(head) => head,
         };
-        let refused = if head.method != "GET" {
-            Some(Refusal::Method)
-        } else if head.body {
-            Some(Refusal::Body)
-        } else {
-            None
-        };
-        if let Some(r) = refused {
-            refuse(&mut out, r)?;
-            http::close(stream, true);
-            return Ok(());
+        if live.load(Ordering::Acquire) >= MAX_CONNECTIONS {
+            continue;
         }
-        let (status, kind, body) = view.answer(&head.target);
-        http::write_answer(
-            &mut out,
-            &Answer {
-                status,
-                kind,
-                body: &body,
-                allow_get: false,
-                close: head.close,
-            },
-        )?;
-        if head.close {
-            http::close(stream, false);
-            return Ok(());
-        }
+        let _ = stream.set_nodelay(true);
+        let held = Live::hold(&live);
+        let service = TowerToHyperService::new(app.clone());
+        tokio::spawn(async move {
+            let _held = held;
+            // A client gone before its answer is no error of the server.
+            let _ = http1::Builder::new()
+                .title_case_headers(true)
+                .timer(TokioTimer::new())
+                .header_read_timeout(IDLE)
+                .serve_connection(TokioIo::new(stream), service)
+                .await;
+        });
     }
 }
 
-/// Answers a refused request (the connection closes after it).
-fn refuse<W: Write>(out: &mut W, r: Refusal) -> std::io::Result<()> {
-    http::write_answer(
-        out,
-        &Answer {
-            status: r.status(),
-            kind: TEXT,
-            body: format!("{r}\n").as_bytes(),
-            allow_get: r == Refusal::Method,
-            close: true,
-        },
-    )
+/// One connection counted as live until dropped.
+struct Live(Arc<AtomicUsize>);
+
+impl Live {
+    fn hold(count: &Arc<AtomicUsize>) -> Self {
+        count.fetch_add(1, Ordering::AcqRel);
+        Self(Arc::clone(count))
+    }
+}
+
+impl Drop for Live {
+    fn drop(&mut self) {
+        self.0.fetch_sub(1, Ordering::AcqRel);
+    }
+}
+
+/// Every request: refused by [`refusal`], or [`View::answer`]ed (on a
+/// blocking thread, since an answer may compute a timeline).
+async fn answer(State(view): State<Arc<View>>, request: Request) -> Response {
+    if let Some(r) = refusal(&request) {
+        let mut response = reply(r.status(), TEXT, format!("{r}\n").into_bytes());
+        let headers = response.headers_mut();
+        if r == Refusal::Method {
+            headers.insert(header::ALLOW, HeaderValue::from_static("GET"));
+        }
+        // The refused request's rest is not read: the connection ends.
+        headers.insert(header::CONNECTION, HeaderValue::from_static("close"));
+        return response;
+    }
+    let url = request.uri().to_string();
+    match tokio::task::spawn_blocking(move || view.answer(&url)).await {
+        Ok((status, kind, body)) => reply(status, kind, body),
+        Err(_) => reply(500, TEXT, b"the answer failed\n".to_vec()),
+    }
+}
+
+/// Why `request` is refused before it is answered, in the order a reader
+/// of its head meets the reasons: the URL, the headers, the method, a body.
+fn refusal(request: &Request) -> Option<Refusal> {
+    let headers = request.headers();
+    let header_bytes: usize = headers
+        .iter()
+        .map(|(name, value)| name.as_str().len() + value.len() + 4)
+        .sum();
+    let length = headers
+        .get(header::CONTENT_LENGTH)
+        .is_some_and(|v| v.as_bytes() != b"0");
+    let body = length || headers.contains_key(header::TRANSFER_ENCODING);
+    if request.uri().to_string().len() > MAX_URL_BYTES {
+        Some(Refusal::UrlTooLong)
+    } else if header_bytes > MAX_HEADER_BYTES {
+        Some(Refusal::HeadersTooLarge)
+    } else if request.method() != Method::GET {
+        Some(Refusal::Method)
+    } else if body {
+        Some(Refusal::Body)
+    } else {
+        None
+    }
+}
+
+/// An answer whole, with its length (hyper writes `Content-Length` for a
+/// body of known size) and the headers every answer has.
+fn reply(status: u16, kind: &'static str, body: Vec<u8>) -> Response {
+    let mut response = Response::new(Body::from(body));
+    *response.status_mut() =
+        StatusCode::from_u16(status).unwrap_or(StatusCode::INTERNAL_SERVER_ERROR);
+    let headers = response.headers_mut();
+    headers.insert(header::CONTENT_TYPE, HeaderValue::from_static(kind));
+    headers.insert(header::CACHE_CONTROL, HeaderValue::from_static("no-store"));
+    headers.insert(
+        header::X_CONTENT_TYPE_OPTIONS,
+        HeaderValue::from_static("nosniff"),
+    );
+    response
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
+
+    use super::*;
+
+    fn request(method: &str, url: &str, headers: &[(&str, &str)]) -> Request {
+        let mut r = axum::http::Request::builder().method(method).uri(url);
+        for (k, v) in headers {
+            r = r.header(*k, *v);
+        }
+        r.body(Body::empty()).unwrap()
+    }
+
+    #[test]
+    fn refusals_come_in_the_order_a_head_is_read() {
+        let long = format!("/{}", "a".repeat(MAX_URL_BYTES));
+        let big = "b".repeat(MAX_HEADER_BYTES);
+        assert_eq!(refusal(&request("GET", "/api/result", &[])), None);
+        assert_eq!(
+            refusal(&request("GET", "/api/result", &[("content-length", "0")])),
+            None
+        );
+        assert_eq!(
+            refusal(&request("POST", &long, &[("x-big", &big)])),
+            Some(Refusal::UrlTooLong)
+        );
+        assert_eq!(
+            refusal(&request("POST", "/", &[("x-big", &big)])),
+            Some(Refusal::HeadersTooLarge)
+        );
+        assert_eq!(
+            refusal(&request("POST", "/", &[("content-length", "5")])),
+            Some(Refusal::Method)
+        );
+        assert_eq!(
+            refusal(&request("GET", "/", &[("content-length", "5")])),
+            Some(Refusal::Body)
+        );
+        assert_eq!(
+            refusal(&request("GET", "/", &[("transfer-encoding", "chunked")])),
+            Some(Refusal::Body)
+        );
+    }
+
+    #[test]
+    fn every_answer_says_its_type_and_is_not_stored() {
+        let r = reply(404, TEXT, b"not found\n".to_vec());
+        assert_eq!(r.status(), StatusCode::NOT_FOUND);
+        let h = r.headers();
+        assert_eq!(h[header::CONTENT_TYPE], TEXT);
+        assert_eq!(h[header::CACHE_CONTROL], "no-store");
+        assert_eq!(h[header::X_CONTENT_TYPE_OPTIONS], "nosniff");
+    }
 }

@@ -4,19 +4,51 @@
 // to interactive and frames per second while playing; the eye trajectory
 // and the band laid drawn (their pixels), the follow camera keeping the
 // payout point centred; and, given a second view of a program that breaks a
-// limit, its violations listed, marked and shown on the readouts.
+// limit, its violations listed, marked and shown on the readouts. Every
+// request a page makes is followed to its end: a page not ready within
+// READY_S fails naming the requests that never finished, and the whole run
+// is bounded by TOTAL_S, so a stalled load fails instead of holding its
+// caller.
 //
 //   node viewer/tests/browser.mjs URL SCREENSHOT_DIR OUT_JSON [PLAY_SPEED [VIOLATIONS_URL]]
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
 
+/** Seconds the page has to become ready (`window.formcam.ready`). */
+const READY_S = Number(process.env.FORMCAM_READY_S ?? 45);
+/** Seconds the whole run may take. */
+const TOTAL_S = 240;
+
 const [url, shots, out, speedArg, violationsUrl] = process.argv.slice(2);
 if (!url || !shots || !out) {
-  console.error('usage: node browser.mjs URL SCREENSHOT_DIR OUT_JSON [PLAY_SPEED]');
+  console.error('usage: node browser.mjs URL SCREENSHOT_DIR OUT_JSON [PLAY_SPEED [VIOLATIONS_URL]]');
   process.exit(2);
 }
 mkdirSync(shots, { recursive: true });
+
+const started = Date.now();
+const errors = [];
+let step = 'launch';
+// Every request: its path, when it started and ended (ms from the start),
+// its status and body size; `end` stays null for one that never finished.
+const requests = [];
+const byRequest = new Map();
+const pathOf = (u) => (u.startsWith(url) ? `/${u.slice(url.length)}` : violationsUrl && u.startsWith(violationsUrl) ? `(violations) /${u.slice(violationsUrl.length)}` : u);
+const unfinished = () => requests.filter((r) => r.end === null)
+  .map((r) => `${r.path} (asked at ${(r.start / 1000).toFixed(1)} s${r.status ? `, status ${r.status} received` : ', no answer'})`);
+const results = {};
+const report = () => writeFileSync(out, JSON.stringify({ errors, requests, ...results }, null, 1));
+
+// A run that stops answering fails instead of holding its caller.
+const watchdog = setTimeout(() => {
+  const open = unfinished();
+  errors.push(`driver: not done within ${TOTAL_S} s (at: ${step})` +
+    (open.length ? `; never finished: ${open.join(', ')}` : ''));
+  report();
+  console.error(errors.at(-1));
+  process.exit(1);
+}, TOTAL_S * 1000);
 
 const browser = await chromium.launch({
   executablePath: process.env.FORMCAM_CHROMIUM ?? '/usr/bin/chromium',
@@ -29,32 +61,71 @@ const browser = await chromium.launch({
     '--ignore-gpu-blocklist',
   ],
 });
-const errors = [];
-let step = 'launch';
-const report = {};
-// A page that stops answering fails the test instead of holding it.
-const watchdog = setTimeout(() => {
-  errors.push(`driver: no answer from the page within 300 s (at: ${step})`);
-  writeFileSync(out, JSON.stringify({ errors, ...report }, null, 1));
-  process.exit(1);
-}, 300_000);
-try {
-  const newPage = async (base) => {
-    const p = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-    p.setDefaultTimeout(120_000);
-    p.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
-    p.on('pageerror', (e) => errors.push(`page: ${e}`));
-    p.on('requestfailed', (r) => errors.push(`request failed: ${r.url()}`));
+
+/** A page whose every request is followed (see `requests`). */
+const newPage = async (base) => {
+  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  page.setDefaultTimeout(60_000);
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
+  page.on('pageerror', (e) => errors.push(`page: ${e}`));
+  page.on('request', (r) => {
     // Nothing is fetched from anywhere but the server.
-    p.on('request', (r) => { if (!r.url().startsWith(base)) errors.push(`outside request: ${r.url()}`); });
-    return p;
-  };
+    if (!r.url().startsWith(base)) errors.push(`outside request: ${r.url()}`);
+    const entry = { path: pathOf(r.url()), start: Date.now() - started, end: null, status: null, bytes: null };
+    requests.push(entry);
+    byRequest.set(r, entry);
+  });
+  page.on('response', (resp) => {
+    const entry = byRequest.get(resp.request());
+    if (entry) entry.status = resp.status();
+  });
+  page.on('requestfinished', async (r) => {
+    const entry = byRequest.get(r);
+    if (!entry) return;
+    entry.end = Date.now() - started;
+    try {
+      entry.bytes = (await r.sizes()).responseBodySize;
+    } catch {
+      // The page may be gone; the size is only for the report.
+    }
+  });
+  page.on('requestfailed', (r) => {
+    const entry = byRequest.get(r);
+    if (entry) entry.end = Date.now() - started;
+    errors.push(`request failed: ${pathOf(r.url())} (${r.failure()?.errorText ?? 'no reason given'})`);
+  });
+  return page;
+};
+
+/** Opens `base` in `page` and waits for it to be ready, at most READY_S. */
+const open = async (page, base) => {
+  let timer;
+  const late = new Promise((_, reject) => {
+    timer = setTimeout(() => {
+      const waiting = unfinished();
+      reject(new Error(`the page was not ready within ${READY_S} s; ` +
+        (waiting.length ? `never finished: ${waiting.join(', ')}` : 'every request finished')));
+    }, READY_S * 1000);
+  });
+  try {
+    await Promise.race([
+      (async () => {
+        await page.goto(base);
+        await page.evaluate(() => window.formcam.ready);
+      })(),
+      late,
+    ]);
+  } finally {
+    clearTimeout(timer);
+  }
+};
+
+try {
   const page = await newPage(url);
 
   const opened = Date.now();
   step = 'open';
-  await page.goto(url);
-  await page.evaluate(() => window.formcam.ready);
+  await open(page, url);
   const tti_s = (Date.now() - opened) / 1000;
 
   // The canvas as drawn: how many colours, and a hash of its pixels.
@@ -142,7 +213,7 @@ try {
     payout: [f1.payout, f2.payout],
     follow: f2.follow,
   };
-  Object.assign(report, { overlays, follow });
+  Object.assign(results, { overlays, follow });
   step = 'play';
   const speed = Number(speedArg ?? 10);
   const fps = await page.evaluate(async (s) => {
@@ -156,14 +227,13 @@ try {
     return (f.frames() - n0) / ((performance.now() - t0) / 1000);
   }, speed);
   await page.screenshot({ path: join(shots, 'playing.png') });
-  Object.assign(report, { tti_s, fps, speed, duration_s, before, after, states });
+  Object.assign(results, { tti_s, fps, speed, duration_s, before, after, states });
   // One page at a time: the first one's drawing would slow the second.
   await page.close();
   if (violationsUrl) {
     step = 'violations';
     const v = await newPage(violationsUrl);
-    await v.goto(violationsUrl);
-    await v.evaluate(() => window.formcam.ready);
+    await open(v, violationsUrl);
     const listed = await v.$$eval('#violations li', (li) => li.map((x) => x.textContent));
     const marks = await v.$$eval('#marks .mark', (m) => m.length);
     // A mark goes to where its violation first happens.
@@ -174,13 +244,16 @@ try {
     const at = await v.evaluate(() => window.formcam.state());
     const red = await v.$$eval('#readouts td.v.alarm', (c) => c.length);
     await v.screenshot({ path: join(shots, 'violations.png') });
-    report.violations = { listed, marks, first, state: at, red_cells: red };
+    results.violations = { listed, marks, first, state: at, red_cells: red };
   }
-  writeFileSync(out, JSON.stringify({ errors, ...report }, null, 1));
+  report();
 } catch (e) {
-  errors.push(`driver: ${e}`);
-  writeFileSync(out, JSON.stringify({ errors, ...report }, null, 1));
+  errors.push(`driver: ${e instanceof Error ? e.message : e} (at: ${step})`);
+  report();
+  console.error(errors.at(-1));
+  process.exitCode = 1;
 } finally {
-  clearTimeout(watchdog);
+  step = 'close';
   await browser.close();
+  clearTimeout(watchdog);
 }

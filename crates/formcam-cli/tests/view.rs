@@ -10,7 +10,9 @@
 //!
 //! The browser test says it was skipped without `/usr/bin/chromium`,
 //! `viewer/node_modules` or a page built into the binary, unless
-//! `FORMCAM_REQUIRE_BROWSER=1` (set by `.ci/run`), when it fails.
+//! `FORMCAM_REQUIRE_BROWSER=1` (set by `.ci/run`), when it fails. A page
+//! that does not become ready fails it within a minute, naming the requests
+//! that never finished.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
@@ -19,7 +21,8 @@ mod common;
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::process::{Child, Command, Output, Stdio};
+use std::time::{Duration, Instant};
 
 use common::{formcam, machines, repo, s, scratch, stderr, wind_ok};
 
@@ -137,13 +140,6 @@ fn a_folder_that_is_no_result_fails_with_exit_2_naming_it() {
 
 /// Whether the browser test can run here; fails when it must.
 fn browser_present() -> bool {
-    // Asked for only (FORMCAM_BROWSER=1 or FORMCAM_REQUIRE_BROWSER=1) while
-    // some page loads stall (docs/view.md, known problems).
-    let asked = |k: &str| std::env::var(k).as_deref() == Ok("1");
-    if !asked("FORMCAM_BROWSER") && !asked("FORMCAM_REQUIRE_BROWSER") {
-        eprintln!("skipped: the browser test runs with FORMCAM_BROWSER=1");
-        return false;
-    }
     let missing: Vec<&str> = [
         (!Path::new("/usr/bin/chromium").is_file())
             .then_some("/usr/bin/chromium (apt-get install chromium)"),
@@ -166,6 +162,36 @@ fn browser_present() -> bool {
     missing.is_empty()
 }
 
+/// The most the browser driver may take; it bounds itself (a page not
+/// ready within 45 s, the whole run within 150 s), this is the last resort.
+const DRIVER_LIMIT: Duration = Duration::from_secs(300);
+
+/// Runs `viewer/tests/SCRIPT` with `args`, killed past [`DRIVER_LIMIT`]
+/// (`report`: the file it writes, quoted when it is killed).
+fn driver(script: &str, args: &[&str], report: &Path) -> Output {
+    let mut child = Command::new("node")
+        .arg(repo().join("viewer/tests").join(script))
+        .args(args)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let started = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if started.elapsed() > DRIVER_LIMIT {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!(
+                "the browser driver did not end within {} s; its report so far: {}",
+                DRIVER_LIMIT.as_secs(),
+                std::fs::read_to_string(report).unwrap_or_default()
+            );
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    child.wait_with_output().unwrap()
+}
+
 #[test]
 fn the_browser_shows_the_payout_point_formcam_machine_fk_gives() {
     if !browser_present() {
@@ -181,11 +207,11 @@ fn the_browser_shows_the_payout_point_formcam_machine_fk_gives() {
     let v_tight = view_with(&out, &["--machine", s(&tight)]);
     let report = out.parent().unwrap().join("browser.json");
     let shots = repo().join("target/screenshots");
-    let node = Command::new("node")
-        .arg(repo().join("viewer/tests/browser.mjs"))
-        .args([&v.url, s(&shots), s(&report), "10", &v_tight.url])
-        .output()
-        .unwrap();
+    let node = driver(
+        "browser.mjs",
+        &[&v.url, s(&shots), s(&report), "10", &v_tight.url],
+        &report,
+    );
     assert!(
         node.status.success(),
         "{}",
@@ -342,11 +368,11 @@ fn drive(kind: &str, out: &Path) -> serde_json::Value {
     let v = view(out);
     let report = out.parent().unwrap().join(format!("{kind}.json"));
     let shots = repo().join("target/screenshots");
-    let node = Command::new("node")
-        .arg(repo().join("viewer/tests/results.mjs"))
-        .args([kind, &v.url, s(&shots), s(&report)])
-        .output()
-        .unwrap();
+    let node = driver(
+        "results.mjs",
+        &[kind, &v.url, s(&shots), s(&report)],
+        &report,
+    );
     drop(v);
     assert!(
         node.status.success(),

@@ -40,7 +40,7 @@ pub use plots::{AxisPlots, MeridianPlot, PullPlot, WindingPlots};
 pub use scene::{
     LinkScene, MERIDIAN_POINTS, MachineScene, MandrelScene, PATH_POINTS, Solid, SolidShape, thin,
 };
-pub use server::{DEFAULT_SAMPLES, MAX_SAMPLES, View, ViewOptions, ViewServer};
+pub use server::{DEFAULT_SAMPLES, MAX_CONNECTIONS, MAX_SAMPLES, View, ViewOptions, ViewServer};
 pub use table::Table;
 pub use timeline::{AxisHead, Sample, Timeline, TimelineHead};
 pub use violations::{AxisRange, Violations};

@@ -1,14 +1,22 @@
 //! The HTTP server: on 127.0.0.1 only, GET only, the page, the result
 //! folder's files and the JSON the page draws.
 
-use std::io::Cursor;
-use std::net::SocketAddr;
+use std::net::{Ipv4Addr, SocketAddr, TcpListener};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::thread;
+use std::time::Duration;
 
+use axum::Router;
+use axum::body::Body;
+use axum::extract::{Request, State};
+use axum::http::{HeaderValue, Method, StatusCode, header};
+use axum::response::Response;
+use hyper::server::conn::http1;
+use hyper_util::rt::{TokioIo, TokioTimer};
+use hyper_util::service::TowerToHyperService;
 use serde::Serialize;
-use tiny_http::{Header, Method, Request, Response};
 
 use crate::ViewError;
 use crate::correction::CorrectionBody;
@@ -17,7 +25,7 @@ use crate::folder::{ResultKind, RunFolder, read_summary};
 use crate::overlay::{Overlay, Shown};
 use crate::page::Page;
 use crate::plots::WindingPlots;
-use crate::request::{MAX_HEADER_BYTES, Refusal, Target, file_under};
+use crate::request::{MAX_HEADER_BYTES, MAX_URL_BYTES, Refusal, Target, file_under};
 use crate::scene::{MachineScene, MandrelScene};
 use crate::timeline::{Timeline, TimelineHead};
 
@@ -26,9 +34,6 @@ pub const DEFAULT_SAMPLES: usize = 2000;
 
 /// The most samples of `/api/timeline`.
 pub const MAX_SAMPLES: usize = 100_000;
-
-/// Threads answering requests.
-const WORKERS: usize = 4;
 
 /// How to start a view.
 #[derive(Debug, Clone, Default)]
@@ -335,7 +340,7 @@ fn content_type(path: &Path) -> &'static str {
 
 /// A view listening on 127.0.0.1.
 pub struct ViewServer {
-    server: Arc<tiny_http::Server>,
+    listener: TcpListener,
     view: Arc<View>,
     addr: SocketAddr,
 }
@@ -348,17 +353,15 @@ impl ViewServer {
     /// The result's [`ViewError`], or [`ViewError::Bind`].
     pub fn bind(root: &Path, options: &ViewOptions, page: Page) -> Result<Self, ViewError> {
         let view = View::open(root, options.machine.as_deref(), page)?;
-        let bind = |e: Box<dyn std::error::Error + Send + Sync>| ViewError::Bind {
+        let bind = |source| ViewError::Bind {
             port: options.port,
-            source: std::io::Error::other(e),
+            source,
         };
-        let server = tiny_http::Server::http(("127.0.0.1", options.port)).map_err(bind)?;
-        let addr = server
-            .server_addr()
-            .to_ip()
-            .ok_or_else(|| bind("not an IP address".into()))?;
+        let listener = TcpListener::bind((Ipv4Addr::LOCALHOST, options.port)).map_err(bind)?;
+        let addr = listener.local_addr().map_err(bind)?;
+        listener.set_nonblocking(true).map_err(bind)?;
         Ok(Self {
-            server: Arc::new(server),
+            listener,
             view: Arc::new(view),
             addr,
         })
@@ -374,72 +377,197 @@ impl ViewServer {
         self.addr
     }
 
-    /// Answers requests until the process ends.
+    /// Answers requests until the process ends: every connection served
+    /// on its own (at most [`MAX_CONNECTIONS`] at once), HTTP/1.1 with
+    /// kept-alive connections. Returns at once only where the system
+    /// cannot start the server's runtime (no threads or descriptors left).
     pub fn serve(self) {
-        let workers: Vec<_> = (1..WORKERS)
-            .map(|_| {
-                let (server, view) = (Arc::clone(&self.server), Arc::clone(&self.view));
-                thread::spawn(move || work(&server, &view))
-            })
-            .collect();
-        work(&self.server, &self.view);
-        for w in workers {
-            let _ = w.join();
-        }
+        let Ok(runtime) = tokio::runtime::Builder::new_current_thread()
+            .enable_all()
+            .build()
+        else {
+            return;
+        };
+        runtime.block_on(accept(self.listener, self.view));
     }
 
-    /// Answers requests on background threads (tests, embedding).
+    /// Answers requests on a background thread (tests, embedding).
     pub fn spawn(self) -> thread::JoinHandle<()> {
         thread::spawn(move || self.serve())
     }
 }
 
-fn work(server: &tiny_http::Server, view: &View) {
-    while let Ok(request) = server.recv() {
-        // A client gone before its answer is no error of the server.
-        let _ = respond(view, request);
+/// The most connections answered at once; more are closed unanswered.
+pub const MAX_CONNECTIONS: usize = 64;
+
+/// How long a connection waits for a request's head (a kept connection
+/// for its next request) before it is closed.
+const IDLE: Duration = Duration::from_secs(60);
+
+/// Accepts connections on `listener` and serves each as a task of its own.
+async fn accept(listener: TcpListener, view: Arc<View>) {
+    let Ok(listener) = tokio::net::TcpListener::from_std(listener) else {
+        return;
+    };
+    let app = Router::new().fallback(answer).with_state(view);
+    let live = Arc::new(AtomicUsize::new(0));
+    loop {
+        let stream = match listener.accept().await {
+            Ok((stream, _)) => stream,
+            Err(_) => {
+                // Out of descriptors or the like: try again in a moment.
+                tokio::time::sleep(Duration::from_millis(20)).await;
+                continue;
+            }
+        };
+        if live.load(Ordering::Acquire) >= MAX_CONNECTIONS {
+            continue;
+        }
+        let _ = stream.set_nodelay(true);
+        let held = Live::hold(&live);
+        let service = TowerToHyperService::new(app.clone());
+        tokio::spawn(async move {
+            let _held = held;
+            // A client gone before its answer is no error of the server.
+            let _ = http1::Builder::new()
+                .title_case_headers(true)
+                .timer(TokioTimer::new())
+                .header_read_timeout(IDLE)
+                .serve_connection(TokioIo::new(stream), service)
+                .await;
+        });
     }
 }
 
-fn respond(view: &View, request: Request) -> std::io::Result<()> {
-    let header_bytes: usize = request
-        .headers()
+/// One connection counted as live until dropped.
+struct Live(Arc<AtomicUsize>);
+
+impl Live {
+    fn hold(count: &Arc<AtomicUsize>) -> Self {
+        count.fetch_add(1, Ordering::AcqRel);
+        Self(Arc::clone(count))
+    }
+}
+
+impl Drop for Live {
+    fn drop(&mut self) {
+        self.0.fetch_sub(1, Ordering::AcqRel);
+    }
+}
+
+/// Every request: refused by [`refusal`], or [`View::answer`]ed (on a
+/// blocking thread, since an answer may compute a timeline).
+async fn answer(State(view): State<Arc<View>>, request: Request) -> Response {
+    if let Some(r) = refusal(&request) {
+        let mut response = reply(r.status(), TEXT, format!("{r}\n").into_bytes());
+        let headers = response.headers_mut();
+        if r == Refusal::Method {
+            headers.insert(header::ALLOW, HeaderValue::from_static("GET"));
+        }
+        // The refused request's rest is not read: the connection ends.
+        headers.insert(header::CONNECTION, HeaderValue::from_static("close"));
+        return response;
+    }
+    let url = request.uri().to_string();
+    match tokio::task::spawn_blocking(move || view.answer(&url)).await {
+        Ok((status, kind, body)) => reply(status, kind, body),
+        Err(_) => reply(500, TEXT, b"the answer failed\n".to_vec()),
+    }
+}
+
+/// Why `request` is refused before it is answered, in the order a reader
+/// of its head meets the reasons: the URL, the headers, the method, a body.
+fn refusal(request: &Request) -> Option<Refusal> {
+    let headers = request.headers();
+    let header_bytes: usize = headers
         .iter()
-        .map(|h| h.field.as_str().as_str().len() + h.value.as_str().len() + 4)
+        .map(|(name, value)| name.as_str().len() + value.len() + 4)
         .sum();
-    let refused = if *request.method() != Method::Get {
-        Some(Refusal::Method)
+    let length = headers
+        .get(header::CONTENT_LENGTH)
+        .is_some_and(|v| v.as_bytes() != b"0");
+    let body = length || headers.contains_key(header::TRANSFER_ENCODING);
+    if request.uri().to_string().len() > MAX_URL_BYTES {
+        Some(Refusal::UrlTooLong)
     } else if header_bytes > MAX_HEADER_BYTES {
         Some(Refusal::HeadersTooLarge)
-    } else if request.body_length().is_some_and(|n| n > 0) {
+    } else if request.method() != Method::GET {
+        Some(Refusal::Method)
+    } else if body {
         Some(Refusal::Body)
     } else {
         None
-    };
-    let (status, kind, body) = match refused {
-        Some(r) => (r.status(), TEXT, format!("{r}\n").into_bytes()),
-        None => view.answer(request.url()),
-    };
-    let mut response = Response::new(
-        status.into(),
-        Vec::new(),
-        Cursor::new(body.clone()),
-        Some(body.len()),
-        None,
+    }
+}
+
+/// An answer whole, with its length (hyper writes `Content-Length` for a
+/// body of known size) and the headers every answer has.
+fn reply(status: u16, kind: &'static str, body: Vec<u8>) -> Response {
+    let mut response = Response::new(Body::from(body));
+    *response.status_mut() =
+        StatusCode::from_u16(status).unwrap_or(StatusCode::INTERNAL_SERVER_ERROR);
+    let headers = response.headers_mut();
+    headers.insert(header::CONTENT_TYPE, HeaderValue::from_static(kind));
+    headers.insert(header::CACHE_CONTROL, HeaderValue::from_static("no-store"));
+    headers.insert(
+        header::X_CONTENT_TYPE_OPTIONS,
+        HeaderValue::from_static("nosniff"),
     );
-    for (k, v) in [
-        ("Content-Type", kind),
-        ("Cache-Control", "no-store"),
-        ("X-Content-Type-Options", "nosniff"),
-    ] {
-        if let Ok(h) = Header::from_bytes(k.as_bytes(), v.as_bytes()) {
-            response.add_header(h);
+    response
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
+
+    use super::*;
+
+    fn request(method: &str, url: &str, headers: &[(&str, &str)]) -> Request {
+        let mut r = axum::http::Request::builder().method(method).uri(url);
+        for (k, v) in headers {
+            r = r.header(*k, *v);
         }
+        r.body(Body::empty()).unwrap()
     }
-    if refused == Some(Refusal::Method)
-        && let Ok(h) = Header::from_bytes(&b"Allow"[..], &b"GET"[..])
-    {
-        response.add_header(h);
+
+    #[test]
+    fn refusals_come_in_the_order_a_head_is_read() {
+        let long = format!("/{}", "a".repeat(MAX_URL_BYTES));
+        let big = "b".repeat(MAX_HEADER_BYTES);
+        assert_eq!(refusal(&request("GET", "/api/result", &[])), None);
+        assert_eq!(
+            refusal(&request("GET", "/api/result", &[("content-length", "0")])),
+            None
+        );
+        assert_eq!(
+            refusal(&request("POST", &long, &[("x-big", &big)])),
+            Some(Refusal::UrlTooLong)
+        );
+        assert_eq!(
+            refusal(&request("POST", "/", &[("x-big", &big)])),
+            Some(Refusal::HeadersTooLarge)
+        );
+        assert_eq!(
+            refusal(&request("POST", "/", &[("content-length", "5")])),
+            Some(Refusal::Method)
+        );
+        assert_eq!(
+            refusal(&request("GET", "/", &[("content-length", "5")])),
+            Some(Refusal::Body)
+        );
+        assert_eq!(
+            refusal(&request("GET", "/", &[("transfer-encoding", "chunked")])),
+            Some(Refusal::Body)
+        );
     }
-    request.respond(response)
+
+    #[test]
+    fn every_answer_says_its_type_and_is_not_stored() {
+        let r = reply(404, TEXT, b"not found\n".to_vec());
+        assert_eq!(r.status(), StatusCode::NOT_FOUND);
+        let h = r.headers();
+        assert_eq!(h[header::CONTENT_TYPE], TEXT);
+        assert_eq!(h[header::CACHE_CONTROL], "no-store");
+        assert_eq!(h[header::X_CONTENT_TYPE_OPTIONS], "nosniff");
+    }
 }

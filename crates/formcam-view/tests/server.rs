@@ -509,3 +509,79 @@ fn the_band_is_laid_circuit_by_circuit_as_the_spindle_turns() {
     assert_eq!(get(&plain, "/api/band").0, 404);
     assert!(plain.json("/api/sample?t=1").get("laid").is_none());
 }
+
+/// One answer read from a kept connection: status and body (by its
+/// `Content-Length`), the connection left open.
+fn read_answer(s: &mut TcpStream) -> std::io::Result<(u16, Vec<u8>)> {
+    let mut head = Vec::new();
+    let mut byte = [0u8; 1];
+    while !head.ends_with(b"\r\n\r\n") {
+        s.read_exact(&mut byte)?;
+        head.push(byte[0]);
+    }
+    let head = String::from_utf8(head).unwrap();
+    let status = head.split_whitespace().nth(1).unwrap().parse().unwrap();
+    let length: usize = head
+        .lines()
+        .find_map(|l| l.strip_prefix("Content-Length: "))
+        .unwrap()
+        .trim()
+        .parse()
+        .unwrap();
+    let mut body = vec![0; length];
+    s.read_exact(&mut body)?;
+    Ok((status, body))
+}
+
+#[test]
+fn connections_kept_open_do_not_hold_back_new_ones() {
+    let dir = folder("kept");
+    let server = start(&dir);
+    let ask = |s: &mut TcpStream, url: &str| {
+        s.write_all(
+            format!("GET {url} HTTP/1.1\r\nHost: x\r\nConnection: keep-alive\r\n\r\n").as_bytes(),
+        )
+        .unwrap();
+    };
+    // A browser keeps its connections open between requests...
+    let mut kept = Vec::new();
+    for _ in 0..3 {
+        let mut s = TcpStream::connect(server.addr).unwrap();
+        s.set_read_timeout(Some(Duration::from_secs(10))).unwrap();
+        ask(&mut s, "/api/result");
+        assert_eq!(read_answer(&mut s).unwrap().0, 200);
+        kept.push(s);
+    }
+    // ...and opens several more at once for a page's parallel fetches,
+    // kept open too, after closing one (a thread of the server comes free):
+    // every one is answered, round after round.
+    for round in 0..5 {
+        drop(kept.remove(0));
+        std::thread::sleep(Duration::from_millis(50));
+        let mut fresh: Vec<TcpStream> = (0..6)
+            .map(|_| TcpStream::connect(server.addr).unwrap())
+            .collect();
+        for s in &mut fresh {
+            s.set_read_timeout(Some(Duration::from_secs(10))).unwrap();
+            ask(s, "/api/blocks");
+        }
+        for (i, s) in fresh.iter_mut().enumerate() {
+            match read_answer(s) {
+                Ok((status, _)) => assert_eq!(status, 200, "round {round}, connection {i}"),
+                Err(e) => panic!(
+                    "round {round}: connection {i} of 6 opened at once, {} kept open: \
+                     no answer in 10 s ({e})",
+                    kept.len()
+                ),
+            }
+        }
+        kept.extend(fresh);
+    }
+    // The kept ones still answer their next request.
+    for s in &mut kept {
+        ask(s, "/api/machine");
+        let (status, body) = read_answer(s).unwrap();
+        assert_eq!(status, 200);
+        assert!(body.starts_with(b"{"));
+    }
+}

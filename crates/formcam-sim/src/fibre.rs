@@ -217,8 +217,10 @@ impl FreeFibre {
     }
 
     /// The fibre of the winding job file `path` (TOML, or a `.wind`
-    /// document with formcam's eye clearance), planned again.
-    pub fn from_job_file(path: &Path) -> Result<Self, SimError> {
+    /// document with formcam's eye clearance), planned again; none when the
+    /// job writes no program (no machine or no eye: a mandrel and a path
+    /// only), so that no program was written from it.
+    pub fn from_job_file(path: &Path) -> Result<Option<Self>, SimError> {
         let text = formcam_files::read_text(path)?;
         let base = path.parent().unwrap_or(Path::new("."));
         let wind = path
@@ -233,7 +235,10 @@ impl FreeFibre {
             path: path.to_path_buf(),
             source: Box::new(source),
         })?;
-        Self::plan(&job.named(path))
+        if job.furthest_stage() != Stage::Program {
+            return Ok(None);
+        }
+        Self::plan(&job.named(path)).map(Some)
     }
 
     /// The same fibre on `machine` (the job's machine with other solids, or

@@ -182,8 +182,14 @@ pub fn check_files_with(
     };
     let text = formcam_files::read_text(program)?;
     let mut report = check_text_in(program, &text, &m, &name, mesh_dir, laminate.as_ref())?;
-    if let Some(job) = &options.mandrel {
-        let fibre = FreeFibre::from_job_file(job)?.with_machine(m)?;
+    // The free fibre of a job that writes a program (a mandrel-only job
+    // gives the mandrel's solid alone).
+    let fibre = match &options.mandrel {
+        Some(job) => FreeFibre::from_job_file(job)?,
+        None => None,
+    };
+    if let Some(fibre) = fibre {
+        let fibre = fibre.with_machine(m)?;
         let (p, lines, dialect) = read_program(program, &text, fibre.machine())?;
         let tl = Timeline::new(&p, &lines, FeedRule::of(dialect), fibre.machine())?;
         report

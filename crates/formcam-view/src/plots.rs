@@ -139,7 +139,12 @@ impl WindingPlots {
         for (layer, dir) in layer_folders(root)? {
             let path = dir.join("path.csv");
             if path.is_file() {
-                meridian.push(meridian_plot(layer, &Table::read(&path)?)?);
+                // A path table without the angle and thickness (written by
+                // other tools, or cut down) has no meridian plot.
+                let t = Table::read(&path)?;
+                if ["z", "alpha_deg", "thickness"].iter().all(|c| t.has(c)) {
+                    meridian.push(meridian_plot(layer, &t)?);
+                }
             }
             let eye = dir.join("eye.csv");
             if eye.is_file() {

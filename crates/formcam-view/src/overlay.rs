@@ -78,6 +78,8 @@ pub struct Overlay {
 impl Overlay {
     /// The overlays of the result under `root` (`summary.json` read into
     /// `summary`) playing `tl`.
+    /// `report`: the folder's `check.json` may be shown (the result is
+    /// shown on the machine it was checked on).
     ///
     /// # Errors
     ///
@@ -86,11 +88,12 @@ impl Overlay {
         root: &Path,
         summary: &Map<String, Value>,
         tl: &Timeline,
+        report: bool,
     ) -> Result<Self, ViewError> {
         Ok(Self {
             band: Band::read(root, summary, tl)?,
             eye: EyeTrajectory::of(tl),
-            violations: Violations::of(root, tl)?,
+            violations: Violations::of(root, tl, report)?,
         })
     }
 

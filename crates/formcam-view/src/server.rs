@@ -98,7 +98,13 @@ impl View {
             None => None,
         };
         let overlay = match &timeline {
-            Some(tl) => Some(Overlay::open(&real, &folder.summary, tl)?),
+            // The folder's `check.json` holds for the machine it names only.
+            Some(tl) => Some(Overlay::open(
+                &real,
+                &folder.summary,
+                tl,
+                machine.is_none(),
+            )?),
             None => None,
         };
         let plots = json(&WindingPlots::read(

@@ -43,16 +43,17 @@ pub struct AxisRange {
 
 impl Violations {
     /// The violations of `tl`'s program: `check.json` under `root` when
-    /// there is one, else the simulator's axis checks on `tl`.
+    /// there is one and `report` (the result is shown on the machine it was
+    /// checked on), else the simulator's axis checks on `tl`.
     ///
     /// # Errors
     ///
     /// `check.json` unreadable, no JSON object or without a `violations`
     /// list, naming the file.
-    pub fn of(root: &Path, tl: &Timeline) -> Result<Self, ViewError> {
+    pub fn of(root: &Path, tl: &Timeline, report: bool) -> Result<Self, ViewError> {
         let limits = AxisLimits::of(tl.machine());
         let path = root.join("check.json");
-        let (source, found) = if path.is_file() {
+        let (source, found) = if report && path.is_file() {
             ("check.json", read_report(&path)?)
         } else {
             let found = check_timeline(tl.sim(), &limits)

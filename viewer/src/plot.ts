@@ -1,6 +1,7 @@
 // Each axis against time (uPlot), from the timeline's samples, with a
 // marker at the time shown and the legend at that time (unless hovered).
 import uPlot from 'uplot';
+import { cursorHook } from './plots';
 import 'uplot/dist/uPlot.min.css';
 import type { TimelineBody } from './api';
 
@@ -34,18 +35,7 @@ export class AxesPlot {
       data.push(tl.samples.map((s) => s.axes[k]));
     });
     const units = [...new Set(tl.axes.map((a) => a.unit))];
-    const marker = (u: uPlot) => {
-      const x = u.valToPos(this.time, 'x', true);
-      const ctx = u.ctx;
-      ctx.save();
-      ctx.strokeStyle = '#e0322b';
-      ctx.lineWidth = 1.5;
-      ctx.beginPath();
-      ctx.moveTo(x, u.bbox.top);
-      ctx.lineTo(x, u.bbox.top + u.bbox.height);
-      ctx.stroke();
-      ctx.restore();
-    };
+    const marker = cursorHook(() => this.time);
     this.plot = new uPlot(
       {
         width: Math.max(host.clientWidth, 300),

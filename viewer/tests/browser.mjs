@@ -14,6 +14,7 @@
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
+import { canvases } from './canvas.mjs';
 
 /** Seconds the page has to become ready (`window.formcam.ready`). */
 const READY_S = Number(process.env.FORMCAM_READY_S ?? 45);
@@ -129,23 +130,10 @@ try {
   const tti_s = (Date.now() - opened) / 1000;
 
   // The canvas as drawn: how many colours, and a hash of its pixels.
-  const pixelsOf = (p) => p.evaluate(() => {
-    const c = document.querySelector('#stage canvas');
-    const d = document.createElement('canvas');
-    d.width = c.width;
-    d.height = c.height;
-    const x = d.getContext('2d');
-    x.drawImage(c, 0, 0);
-    const data = x.getImageData(0, 0, d.width, d.height).data;
-    const colours = new Set();
-    let hash = 0;
-    for (let i = 0; i < data.length; i += 4) {
-      const v = (data[i] << 16) | (data[i + 1] << 8) | data[i + 2];
-      if (i % 28 === 0) colours.add(v);
-      hash = (Math.imul(hash, 31) + v) >>> 0;
-    }
-    return { colours: colours.size, hash };
-  });
+  const pixelsOf = async (p) => {
+    const [{ colours, hash }] = await canvases(p, '#stage canvas');
+    return { colours, hash };
+  };
   const pixels = () => pixelsOf(page);
   const frame = (p) => p.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
 

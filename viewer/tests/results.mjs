@@ -8,6 +8,7 @@
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
+import { canvases } from './canvas.mjs';
 
 const [kind, url, shots, out] = process.argv.slice(2);
 if (!kind || !url || !shots || !out) {
@@ -30,23 +31,6 @@ const watchdog = setTimeout(() => {
   process.exit(1);
 }, 240_000);
 
-/** Colours (sampled) and a hash of each canvas matching `selector`. */
-const canvases = (page, selector) => page.evaluate((sel) => [...document.querySelectorAll(sel)].map((c) => {
-  const d = document.createElement('canvas');
-  d.width = c.width;
-  d.height = c.height;
-  const x = d.getContext('2d');
-  x.drawImage(c, 0, 0);
-  const data = x.getImageData(0, 0, d.width, d.height).data;
-  const colours = new Set();
-  let hash = 0;
-  for (let i = 0; i < data.length; i += 4) {
-    const v = (data[i] << 16) | (data[i + 1] << 8) | data[i + 2];
-    if (i % 28 === 0) colours.add(v);
-    hash = (Math.imul(hash, 31) + v) >>> 0;
-  }
-  return { width: c.width, height: c.height, colours: colours.size, hash };
-}), selector);
 
 const frames = (page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
 

@@ -11,15 +11,13 @@
 
 mod common;
 
-use std::process::{Command, Stdio};
-
 use common::{examples, scratch};
 use formcam_nc::{AxisSpec, Dialect, read_gcode_in};
 
 #[path = "../../formcam-nc/tests/support/rs274.rs"]
 mod rs274;
 
-use rs274::rs274_present;
+use rs274::{rs274_present, run_rs274};
 
 /// One canonical call of `rs274 -g`.
 #[derive(Debug)]
@@ -97,31 +95,7 @@ fn linuxcnc_reads_our_program_to_the_same_positions_and_time() {
     let program = std::fs::read_to_string(out.join("program.ngc")).unwrap();
 
     // The machine: A a wrapped rotary axis.
-    std::fs::write(
-        dir.join("winder.ini"),
-        "[RS274NGC]\nPARAMETER_FILE = winder.var\n\n[TRAJ]\nCOORDINATES = XYZAB\n\
-         LINEAR_UNITS = mm\nANGULAR_UNITS = degree\n\n[AXIS_A]\nWRAPPED_ROTARY = 1\n",
-    )
-    .unwrap();
-    std::fs::write(dir.join("winder.var"), "").unwrap();
-    std::fs::write(dir.join("winder.tbl"), "T1 P1 D0 Z0 ;\n").unwrap();
-    std::fs::write(dir.join("program.ngc"), &program).unwrap();
-    let run = Command::new("rs274")
-        .current_dir(&dir)
-        .args([
-            "-i",
-            "winder.ini",
-            "-t",
-            "winder.tbl",
-            "-v",
-            "winder.var",
-            "-g",
-        ])
-        .args(["program.ngc", "canon.txt"])
-        .stdin(Stdio::null())
-        .output()
-        .unwrap();
-    let printed = std::fs::read_to_string(dir.join("canon.txt")).unwrap_or_default();
+    let (run, printed) = run_rs274(&dir, &program);
     let calls = canon(&printed);
     assert!(
         run.status.success() && matches!(calls.last(), Some(Canon::End)),

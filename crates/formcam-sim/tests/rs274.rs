@@ -15,7 +15,6 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::path::Path;
-use std::process::{Command, Stdio};
 
 use formcam_machine::shipped::shipped;
 use formcam_nc::{Block, Dialect, Feed, Motion, Program, write};
@@ -24,7 +23,7 @@ use formcam_sim::{FeedRule, Timeline, program_axes, read_program};
 #[path = "../../formcam-nc/tests/support/rs274.rs"]
 mod rs274;
 
-use rs274::rs274_present;
+use rs274::{rs274_present, run_rs274};
 
 /// A canonical move: traverse or feed, its end (x y z a b c u v w), the
 /// feed mode (inverse time) and rate in force.
@@ -183,32 +182,7 @@ fn linuxcnc_times_our_linuxcnc_program_as_we_do() {
 /// configuration (A a wrapped rotary axis): the canonical calls printed.
 fn canon(text: &str, name: &str) -> String {
     let dir = std::env::temp_dir().join(format!("formcam-sim-rs274-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(
-        dir.join("winder.ini"),
-        "[RS274NGC]\nPARAMETER_FILE = winder.var\n\n[TRAJ]\nCOORDINATES = XYZAB\n\
-         LINEAR_UNITS = mm\nANGULAR_UNITS = degree\n\n[AXIS_A]\nWRAPPED_ROTARY = 1\n",
-    )
-    .unwrap();
-    std::fs::write(dir.join("winder.var"), "").unwrap();
-    std::fs::write(dir.join("winder.tbl"), "T1 P1 D0 Z0 ;\n").unwrap();
-    std::fs::write(dir.join("program.ngc"), text).unwrap();
-    let run = Command::new("rs274")
-        .current_dir(&dir)
-        .args([
-            "-i",
-            "winder.ini",
-            "-t",
-            "winder.tbl",
-            "-v",
-            "winder.var",
-            "-g",
-        ])
-        .args(["program.ngc", "canon.txt"])
-        .stdin(Stdio::null())
-        .output()
-        .unwrap();
-    let printed = std::fs::read_to_string(dir.join("canon.txt")).unwrap_or_default();
+    let (run, printed) = run_rs274(&dir, text);
     assert!(
         run.status.success(),
         "rs274 failed: {}",

@@ -6,7 +6,7 @@
 //! spindle turn, the layer ending where `blocks.csv` ends it). A time's
 //! spindle angle (the timeline's) says how much of it is laid.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use formcam_machine::Machine;
 use serde::Serialize;
@@ -14,6 +14,7 @@ use serde_json::{Map, Value};
 
 use crate::ViewError;
 use crate::scene::thin;
+use crate::table::Table;
 use crate::timeline::Timeline;
 
 /// The most band points sent for drawing (over every circuit and layer).
@@ -252,23 +253,22 @@ fn tables(
     let e = Table::read(&eye)?;
     let a = Table::read(&axes)?;
     // A whole program's `axes.csv` is by time, not by laid length.
-    if a.names.first().map(String::as_str) != Some("x") || e.rows.len() < 2 || a.rows.len() < 2 {
+    if a.names().first().map(String::as_str) != Some("x") || e.len() < 2 || a.len() < 2 {
         return Ok(None);
     }
-    let (ex, ez, er, ev) = (
-        e.column("x")?,
-        e.column("z")?,
-        e.column("r")?,
-        e.column("v")?,
-    );
-    let eal = e.column("alpha")?;
-    let (ax, aa) = (a.column("x")?, a.column(spindle)?);
-    let path = e
-        .rows
-        .iter()
-        .map(|r| [r[ex], r[ez], r[er], r[ev], r[eal]])
+    let columns = ["x", "z", "r", "v", "alpha"]
+        .map(|c| e.numbers(c))
+        .into_iter()
+        .collect::<Result<Vec<_>, _>>()?;
+    let path = (0..e.len())
+        .map(|i| [0, 1, 2, 3, 4].map(|c| columns[c][i]))
         .collect();
-    let spindle = a.rows.iter().map(|r| [r[ax], r[aa]]).collect();
+    let spindle = a
+        .numbers("x")?
+        .into_iter()
+        .zip(a.numbers(spindle)?)
+        .map(|(x, s)| [x, s])
+        .collect();
     Ok(Some(LayerTables {
         number,
         circuits,
@@ -290,16 +290,16 @@ struct LayerEnd {
 /// Per layer, where its last block in `blocks.csv` ends.
 fn layer_ends(path: &Path, spindle: &str) -> Result<Vec<LayerEnd>, ViewError> {
     let t = Table::read(path)?;
-    let (cl, ct, ca) = (t.column("layer")?, t.column("t")?, t.column(spindle)?);
+    let (layers, times, angles) = (t.numbers("layer")?, t.numbers("t")?, t.numbers(spindle)?);
     let mut out: Vec<LayerEnd> = Vec::new();
     let mut time_s = 0.0;
-    for r in &t.rows {
-        time_s += r[ct];
-        let layer = r[cl] as usize;
+    for ((layer, dt), angle) in layers.into_iter().zip(times).zip(angles) {
+        time_s += dt;
+        let layer = layer as usize;
         let end = LayerEnd {
             layer,
             time_s,
-            angle: r[ca],
+            angle,
         };
         match out.iter_mut().find(|e| e.layer == layer) {
             Some(e) => *e = end,
@@ -324,59 +324,6 @@ fn interpolate(table: &[[f64; 2]], x: f64) -> f64 {
         a[1] + (b[1] - a[1]) * (x - a[0]) / (b[0] - a[0])
     } else {
         b[1]
-    }
-}
-
-/// A numeric CSV table with a header row.
-struct Table {
-    path: PathBuf,
-    names: Vec<String>,
-    rows: Vec<Vec<f64>>,
-}
-
-impl Table {
-    fn read(path: &Path) -> Result<Self, ViewError> {
-        let bad = |line: usize, problem: String| ViewError::Table {
-            path: path.to_path_buf(),
-            line,
-            problem,
-        };
-        let text = formcam_files::read_text(path).map_err(|source| ViewError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .filter(|(_, l)| !l.trim().is_empty());
-        let (_, header) = lines.next().ok_or_else(|| bad(1, "empty file".into()))?;
-        let names: Vec<String> = header.split(',').map(|s| s.trim().to_string()).collect();
-        let mut rows = Vec::new();
-        for (i, line) in lines {
-            let row = line
-                .split(',')
-                .map(|c| c.trim().parse::<f64>().ok().filter(|v| v.is_finite()))
-                .collect::<Option<Vec<f64>>>()
-                .filter(|r| r.len() == names.len())
-                .ok_or_else(|| bad(i + 1, format!("needs {} finite numbers", names.len())))?;
-            rows.push(row);
-        }
-        Ok(Self {
-            path: path.to_path_buf(),
-            names,
-            rows,
-        })
-    }
-
-    fn column(&self, name: &str) -> Result<usize, ViewError> {
-        self.names
-            .iter()
-            .position(|n| n == name)
-            .ok_or_else(|| ViewError::Table {
-                path: self.path.clone(),
-                line: 1,
-                problem: format!("no column `{name}`"),
-            })
     }
 }
 

@@ -66,6 +66,11 @@ impl Table {
         self.rows.is_empty()
     }
 
+    /// The column names, as the header gives them.
+    pub fn names(&self) -> &[String] {
+        &self.names
+    }
+
     /// Whether the table has the column `name`.
     pub fn has(&self, name: &str) -> bool {
         self.names.iter().any(|n| n == name)

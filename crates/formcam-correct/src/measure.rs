@@ -220,6 +220,19 @@ impl Measurements {
         m.finish()
     }
 
+    /// Reads the text of the CMM report file `path` by its extension: DMIS
+    /// for `.dmi`, `.dmis`, `.dms`, `.dmo` (any case), else CSV.
+    pub fn from_file_text(path: &std::path::Path, text: &str) -> Result<Self, CorrectError> {
+        let ext = path
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase())
+            .unwrap_or_default();
+        match ext.as_str() {
+            "dmi" | "dmis" | "dms" | "dmo" => Self::from_dmis(text),
+            _ => Self::from_csv(text),
+        }
+    }
+
     /// Reads the point features of a DMIS output file: nominals
     /// `F(label)=FEAT/POINT,CART,x,y,z[,i,j,k]` and actuals
     /// `FA(label)=FEAT/POINT,CART,x,y,z[,i,j,k]`. A label names its section

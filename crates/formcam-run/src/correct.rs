@@ -570,18 +570,12 @@ fn read(path: &Path) -> Result<String, RunError> {
 /// extension.
 pub fn read_measurements(path: &Path) -> Result<Measurements, RunError> {
     let text = read(path)?;
-    let ext = path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase())
-        .unwrap_or_default();
-    let m = match ext.as_str() {
-        "dmi" | "dmis" | "dms" | "dmo" => Measurements::from_dmis(&text),
-        _ => Measurements::from_csv(&text),
-    };
-    Ok(m.map_err(|source| CorrectRunError::File {
-        path: path.to_path_buf(),
-        source,
-    })?)
+    Ok(
+        Measurements::from_file_text(path, &text).map_err(|source| CorrectRunError::File {
+            path: path.to_path_buf(),
+            source,
+        })?,
+    )
 }
 
 /// A file a job names that cannot be read, naming the job and its `field`;

@@ -82,18 +82,12 @@ impl CorrectionBody {
             .to_string();
         let path = PathBuf::from(&name);
         let text = crate::folder::read_text(&path)?;
-        let ext = path
-            .extension()
-            .map(|e| e.to_string_lossy().to_ascii_lowercase())
-            .unwrap_or_default();
-        let m = match ext.as_str() {
-            "dmi" | "dmis" | "dms" | "dmo" => Measurements::from_dmis(&text),
-            _ => Measurements::from_csv(&text),
-        }
-        .map_err(|source| ViewError::Measurements {
-            report: report_path,
-            measurements: path.clone(),
-            source: Box::new(source),
+        let m = Measurements::from_file_text(&path, &text).map_err(|source| {
+            ViewError::Measurements {
+                report: report_path,
+                measurements: path.clone(),
+                source: Box::new(source),
+            }
         })?;
         let program = std::fs::read_dir(root).ok().and_then(|d| {
             d.filter_map(Result::ok)

@@ -185,8 +185,10 @@ fn canon(text: &str, name: &str) -> String {
     let (run, printed) = run_rs274(&dir, text);
     assert!(
         run.status.success(),
-        "rs274 failed: {}",
-        String::from_utf8_lossy(&run.stderr)
+        "rs274 failed ({}): {}{}",
+        run.status,
+        String::from_utf8_lossy(&run.stderr),
+        String::from_utf8_lossy(&run.stdout)
     );
     std::fs::remove_dir_all(&dir).ok();
     printed

@@ -452,33 +452,27 @@ pub fn assemble(
     let cap: Vec<f64> = pending_blocks.iter().map(|b| b.cap).collect();
     let mut joined = join_times(&d, &t_star, &cap, &limits)?;
     let mut program_violated = Vec::new();
+    // A limit of axis `k` broken in block `b` (0-based) by `e`.
+    let violated = |check: Check, limit: &str, (b, k, e): (usize, usize, f64)| Violated {
+        check,
+        layer: format!("layer {}", pending_blocks.get(b).map_or(0, |p| p.layer)),
+        detail: format!(
+            "break the {limit} of axis {} in block {} of the program by {e:.3e}",
+            m.axes[k].name,
+            b + 1
+        ),
+    };
     if keeps_acceleration(motion) {
         // The joins' ramps and the moves between layers, slowed where a
         // velocity change breaks an acceleration limit.
         let a_max = planned_a_max(m);
         joined = sequence_with_acceleration(&d, &joined, &limits, &a_max)?;
-        if let Some(&(b, k, e)) = check_sequence_acceleration(&d, &joined.times, &a_max).first() {
-            program_violated.push(Violated {
-                check: Check::Acceleration,
-                layer: format!("layer {}", pending_blocks.get(b).map_or(0, |p| p.layer)),
-                detail: format!(
-                    "break the acceleration limit of axis {} in block {} of the program by {e:.3e}",
-                    m.axes[k].name,
-                    b + 1
-                ),
-            });
+        if let Some(&first) = check_sequence_acceleration(&d, &joined.times, &a_max).first() {
+            program_violated.push(violated(Check::Acceleration, "acceleration limit", first));
         }
     }
-    if let Some((b, k, e)) = timing_from_rest(&d, &joined.times, &limits) {
-        program_violated.push(Violated {
-            check: Check::Timing,
-            layer: format!("layer {}", pending_blocks.get(b).map_or(0, |p| p.layer)),
-            detail: format!(
-                "break the velocity limits of axis {} in block {} of the program by {e:.3e}",
-                m.axes[k].name,
-                b + 1
-            ),
-        });
+    if let Some(first) = timing_from_rest(&d, &joined.times, &limits) {
+        program_violated.push(violated(Check::Timing, "velocity limits", first));
     }
     let count = pending_blocks.len();
     let mut timed = Vec::with_capacity(count);

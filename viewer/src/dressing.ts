@@ -1,7 +1,8 @@
 // A dressing result (`/api/dressing`): the wheel's profile, the contour
 // before dressing (profile and allowance) and after, the dresser's path per
 // pass, and the dresser (point A, its dressing corner) moving along its
-// path in the program's own time; the removal rate and feed against Z.
+// path in the program's own time, the region it has removed so far growing
+// behind it; the removal rate and feed against Z.
 // `window.formcam` plays and seeks it; a seek shows the point the server
 // computes (`/api/dressing/sample`).
 import uPlot from 'uplot';
@@ -35,7 +36,12 @@ export interface DressingState {
   dresser: [number, number];
   /** Plots and the points each series draws. */
   series: Record<string, number[]>;
+  /** The colour of the region removed so far (opaque, drawn under the lines). */
+  removed_rgb: [number, number, number];
 }
+
+/** The region removed so far: opaque, so that it can be told by its pixels. */
+const REMOVED_RGB: [number, number, number] = [246, 178, 92];
 
 /** The block running at `t`: the last starting at or before it. */
 function blockAt(starts: number[], blocks: number, t: number): number {
@@ -95,17 +101,55 @@ export async function openDressing(host: HTMLElement, ready: Promise<void>): Pro
     return p;
   };
 
-  const colours = { profile: '#1b1f27', initial: '#8a6d3b', final: '#2ca02c', removed: 'rgba(255, 170, 60, 0.35)' };
-  const view = new View2d(q('.drawing'), (v, ctx) => {
-    // The removed region: between the contour before and after.
+  const colours = {
+    profile: '#1b1f27', initial: '#8a6d3b', final: '#2ca02c',
+    toRemove: 'rgba(255, 170, 60, 0.15)', removed: `rgb(${REMOVED_RGB.join(', ')})`,
+  };
+  /** The region to remove: between the contour before and after. */
+  const removal = (v: View2d, ctx: CanvasRenderingContext2D) => {
     const poly = [...d.initial, ...[...d.final_contour].reverse()];
-    if (poly.length > 2) {
-      ctx.fillStyle = colours.removed;
+    ctx.beginPath();
+    if (poly.length < 3) return false;
+    ctx.moveTo(v.px(poly[0][0]), v.py(poly[0][1]));
+    for (const [z, x] of poly) ctx.lineTo(v.px(z), v.py(x));
+    ctx.closePath();
+    return true;
+  };
+  /** What the dressing corner has swept up to the time shown (the blocks
+   * that take time: feed moves; a rapid move cuts nothing), as strokes as
+   * wide as the corner with round ends: the corner's disc moved along. */
+  const swept = (v: View2d, ctx: CanvasRenderingContext2D) => {
+    const s = shown;
+    const [az, ax] = [s.dresser[1], s.dresser[0]];
+    ctx.strokeStyle = colours.removed;
+    ctx.fillStyle = colours.removed;
+    ctx.lineCap = 'round';
+    ctx.lineJoin = 'round';
+    // Block b's move of the corner's centre (point A plus the corner's
+    // offset in the block's pass), from its start to `to` (point A).
+    const stroke = (b: number, to: [number, number]) => {
+      const p = d.passes[pass(b)];
+      const [oz, ox] = p ? p.corner_offset : [0, 0];
+      ctx.lineWidth = Math.max(2 * (p?.corner_radius ?? 0) * v.pixelsPerMm, 1);
       ctx.beginPath();
-      ctx.moveTo(v.px(poly[0][0]), v.py(poly[0][1]));
-      for (const [z, x] of poly) ctx.lineTo(v.px(z), v.py(x));
-      ctx.closePath();
+      ctx.moveTo(v.px(d.points[b][0] + oz), v.py(d.points[b][1] + ox));
+      ctx.lineTo(v.px(to[0] + oz), v.py(to[1] + ox));
+      ctx.stroke();
+    };
+    for (let b = 0; b < s.block && b < blocks; b++) {
+      if (d.t[b + 1] > d.t[b]) stroke(b, [d.points[b + 1][0], d.points[b + 1][1]]);
+    }
+    if (s.block < blocks && d.t[s.block + 1] > d.t[s.block] && s.t > d.t[s.block]) stroke(s.block, [az, ax]);
+  };
+  const view = new View2d(q('.drawing'), (v, ctx) => {
+    // The region to remove, and within it what is removed so far.
+    if (removal(v, ctx)) {
+      ctx.fillStyle = colours.toRemove;
       ctx.fill();
+      ctx.save();
+      ctx.clip();
+      swept(v, ctx);
+      ctx.restore();
     }
     v.line(ctx, d.initial, colours.initial, 1.2);
     v.line(ctx, d.final_contour, colours.final, 1.2);
@@ -139,6 +183,7 @@ export async function openDressing(host: HTMLElement, ready: Promise<void>): Pro
     `<span style="color:${colours.profile}">— profile</span> ` +
     `<span style="color:${colours.initial}">— before (allowance)</span> ` +
     `<span style="color:${colours.final}">— dressed</span> ` +
+    `<span style="color:${colours.removed}">■ removed so far</span> ` +
     `<span style="color:#d62728">● point A, dressing corner</span><br>` +
     d.passes.map((p, k) => `<span style="color:${COLOURS[(k + 3) % COLOURS.length]}">— pass ${p.pass}</span>`).join(' ') +
     '<br><small>wheel: zoom, drag: pan, double-click: fit</small>';
@@ -222,7 +267,9 @@ export async function openDressing(host: HTMLElement, ready: Promise<void>): Pro
     ready,
     duration_s: duration,
     seek,
-    state: () => ({ time_s: shown.t, block: shown.block, line: shown.line, dresser: shown.dresser, series: probe }),
+    state: () => ({
+      time_s: shown.t, block: shown.block, line: shown.line, dresser: shown.dresser, series: probe, removed_rgb: REMOVED_RGB,
+    }),
     play: (s?: number) => {
       if (s) speed = s;
       if (shown.t >= duration) show(local(0));

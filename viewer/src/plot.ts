@@ -29,7 +29,7 @@ export class AxesPlot {
         scale: a.unit,
         value: (u: uPlot, v: number | null, _s: number, i: number | null) => {
           const x = u.cursor.idx == null && i === this.idx && this.exact ? this.exact[k] : v;
-          return x == null ? '--' : x.toFixed(3);
+          return x == null ? '' : x.toFixed(3);
         },
       });
       data.push(tl.samples.map((s) => s.axes[k]));
@@ -57,7 +57,8 @@ export class AxesPlot {
         legend: { show: true },
         hooks: {
           draw: [marker],
-          // The pointer gone: the legend goes back to the time shown.
+          // Drawn, or the pointer gone: the legend shows the time shown.
+          ready: [(u: uPlot) => u.setLegend({ idx: this.idx }, false)],
           setCursor: [(u: uPlot) => { if (u.cursor.idx == null) u.setLegend({ idx: this.idx }, false); }],
         },
       },

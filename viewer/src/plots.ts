@@ -71,13 +71,30 @@ export function spanRange(_u: uPlot, min: number | null, max: number | null): uP
   return [mid - half, mid + half];
 }
 
-/** A titled uPlot in `host`; every value scale at least [`spanRange`] wide. */
+/** A legend value: a number in few digits, blank where there is none
+ * (uPlot would write `--`). */
+export function legendValue(_u: uPlot, v: number | null): string {
+  return v === null || v === undefined || !Number.isFinite(v) ? '' : String(+v.toPrecision(6));
+}
+
+/** Shows row `idx` in `u`'s legend (blank values with none) while the
+ * pointer is off the plot; under the pointer uPlot shows its row. */
+export function legendAt(u: uPlot, idx: number | null): void {
+  if (u.cursor.idx !== null && u.cursor.idx !== undefined) return;
+  if (idx === null) u.setLegend({ idxs: u.series.map(() => null) }, false);
+  else u.setLegend({ idx }, false);
+}
+
+/** A titled uPlot in `host`; every value scale at least [`spanRange`] wide.
+ * Its legend, while the pointer is off the plot, shows the row `rest()`
+ * (the values at the time shown, say), or no values without one. */
 export function chart(
   host: HTMLElement,
   title: string,
   opts: Omit<uPlot.Options, 'width' | 'height' | 'title'>,
   data: uPlot.AlignedData,
   height = 220,
+  rest: () => number | null = () => null,
 ): uPlot {
   const div = document.createElement('div');
   div.className = 'chart';
@@ -87,11 +104,30 @@ export function chart(
     const key = s.scale ?? 'y';
     scales[key] = { range: spanRange, ...(scales[key] ?? {}) };
   }
+  const series = opts.series.map((s) => ({ value: legendValue, ...s }));
+  const atRest = (u: uPlot) => legendAt(u, rest());
+  const hooks: uPlot.Hooks.Arrays = {
+    ...(opts.hooks ?? {}),
+    ready: [...(opts.hooks?.ready ?? []), atRest],
+    setCursor: [...(opts.hooks?.setCursor ?? []), atRest],
+  };
   return new uPlot(
-    { width: Math.max(host.clientWidth - 24, 320), height, title, ...opts, scales },
+    { width: Math.max(host.clientWidth - 24, 320), height, title, ...opts, series, scales, hooks },
     data,
     div,
   );
+}
+
+/** The last index of ascending `xs` at or before `x` (0 before the first). */
+export function rowAt(xs: ArrayLike<number>, x: number): number {
+  let lo = 0;
+  let hi = xs.length;
+  while (lo < hi) {
+    const mid = (lo + hi) >> 1;
+    if (xs[mid] <= x) lo = mid + 1;
+    else hi = mid;
+  }
+  return Math.max(0, lo - 1);
 }
 
 /** A red vertical line at x value `at()` on every redraw. */
@@ -118,6 +154,10 @@ export class WindingPlots {
   private blocksPlot: uPlot | null = null;
   private drawn: Promise<void> | null = null;
   private readonly probe: Record<string, number[]> = {};
+  /** The axes' sample times (a block's start each, then the end). */
+  private axesT: number[] | null = null;
+  /** The row the timed legends show. */
+  private legendRow: number | null = null;
 
   constructor(private readonly host: HTMLElement, toggle: HTMLElement) {
     toggle.addEventListener('click', () => {
@@ -134,13 +174,30 @@ export class WindingPlots {
     return this.drawn;
   }
 
-  /** Moves the cursors to `t` s. */
+  /** Moves the cursors (and the legends, at rest) to `t` s. */
   at(t: number): void {
     const moved = this.timed.some((u) => Math.round(u.valToPos(t, 'x')) !== Math.round(u.valToPos(this.time, 'x')));
     this.time = t;
     if (this.host.hidden) return;
     if (moved) for (const u of this.timed) u.redraw(false, false);
     this.blocksPlot?.redraw(false, false);
+    const row = this.row();
+    if (row !== this.legendRow) {
+      this.legendRow = row;
+      for (const u of this.timed) legendAt(u, row);
+      if (this.blocksPlot) legendAt(this.blocksPlot, this.block());
+    }
+  }
+
+  /** The row of the axes' times at the time shown. */
+  private row(): number | null {
+    return this.axesT ? rowAt(this.axesT, this.time) : null;
+  }
+
+  /** The block running at the time shown (the last starting at or before it). */
+  private block(): number | null {
+    const r = this.row();
+    return r === null || !this.axesT ? null : Math.min(r, this.axesT.length - 2);
   }
 
   private add(name: string, u: uPlot): uPlot {
@@ -175,6 +232,7 @@ export class WindingPlots {
     }
     const a = b.axes;
     if (a) {
+      this.axesT = a.t;
       const cursor = cursorHook(() => this.time);
       a.names.forEach((name, k) => {
         const u = chart(host, `${name}: position and velocity against time`, {
@@ -193,21 +251,11 @@ export class WindingPlots {
             { scale: 'v', label: a.velocity_units[k], side: 1, grid: { show: false } },
           ],
           hooks: { draw: [cursor] },
-        }, [a.t, a.position[k], a.velocity[k]] as uPlot.AlignedData, 180);
+        }, [a.t, a.position[k], a.velocity[k]] as uPlot.AlignedData, 180, () => this.row());
         this.timed.push(this.add(`axis ${name}`, u));
       });
       const index = a.block_s.map((_, i) => i);
-      const current = () => {
-        // The block running at the time shown: the last starting at or before it.
-        let lo = 0;
-        let hi = a.block_s.length;
-        while (lo < hi) {
-          const mid = (lo + hi) >> 1;
-          if (a.t[mid] <= this.time) lo = mid + 1;
-          else hi = mid;
-        }
-        return Math.max(0, lo - 1);
-      };
+      const current = () => this.block() ?? 0;
       this.blocksPlot = this.add('blocks', chart(host, 'Block times', {
         scales: { x: { time: false } },
         series: [
@@ -216,7 +264,7 @@ export class WindingPlots {
         ],
         axes: [{ label: 'block (0-based)' }, { label: 's' }],
         hooks: { draw: [cursorHook(current)] },
-      }, [index, a.block_s] as uPlot.AlignedData, 180));
+      }, [index, a.block_s] as uPlot.AlignedData, 180, () => this.block()));
     }
     if (host.childElementCount === 0) host.textContent = 'This result has no tables to plot.';
   }

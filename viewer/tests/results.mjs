@@ -1,10 +1,12 @@
 // Drives the 2-D parts of the page `formcam view` serves in headless
 // Chromium (Debian's, through playwright-core): a winding result's plots,
-// a dressing result's animation, a correction result's deviation map. It
-// writes what it saw as JSON (the Rust test asserts on it) and screenshots.
+// a dressing result's animation (and the region removed so far), a
+// correction result's deviation map (each round's, for a closed loop), and
+// every plot's legend before the pointer comes. It writes what it saw as
+// JSON (the Rust test asserts on it) and screenshots.
 //
 //   node viewer/tests/results.mjs KIND URL SCREENSHOT_DIR OUT_JSON
-//   KIND: plots | dressing | correction
+//   KIND: plots | dressing | correction | loop (a closed-loop simulation)
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
@@ -12,7 +14,7 @@ import { canvases } from './canvas.mjs';
 
 const [kind, url, shots, out] = process.argv.slice(2);
 if (!kind || !url || !shots || !out) {
-  console.error('usage: node results.mjs plots|dressing|correction URL SCREENSHOT_DIR OUT_JSON');
+  console.error('usage: node results.mjs plots|dressing|correction|loop URL SCREENSHOT_DIR OUT_JSON');
   process.exit(2);
 }
 mkdirSync(shots, { recursive: true });
@@ -31,6 +33,23 @@ const watchdog = setTimeout(() => {
   process.exit(1);
 }, 240_000);
 
+
+/** The value cells of every plot's legend, as shown (uPlot writes `--`
+ * where it has no value). */
+const legends = (page) => page.evaluate(() => [...document.querySelectorAll('.u-legend .u-value')]
+  .map((c) => c.textContent));
+
+/** The pixels of `rgb` (within 2 per channel) on the canvases matching `selector`. */
+const pixelsOf = (page, selector, rgb) => page.evaluate(([sel, [r, g, b]]) => {
+  let n = 0;
+  for (const c of document.querySelectorAll(sel)) {
+    const data = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    for (let i = 0; i < data.length; i += 4) {
+      if (Math.abs(data[i] - r) <= 2 && Math.abs(data[i + 1] - g) <= 2 && Math.abs(data[i + 2] - b) <= 2) n++;
+    }
+  }
+  return n;
+}, [selector, rgb]);
 
 const frames = (page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
 
@@ -71,6 +90,7 @@ try {
       }
       return e;
     });
+    report.legends = await legends(page);
     report.canvases = await canvases(page, '#plots-panel canvas');
     await page.screenshot({ path: join(shots, 'plots.png') });
     await page.evaluate(() => { document.querySelector('#plots-panel').scrollTop = 1e6; });
@@ -82,13 +102,16 @@ try {
     const server = (t) => page.evaluate(async (tt) => (await (await fetch(`/api/dressing/sample?t=${tt}`)).json()), t);
     report.duration_s = duration;
     report.start = await page.evaluate(() => window.formcam.state());
+    report.legends = await legends(page);
     report.first = await canvases(page, '#app2d canvas.view2d');
+    const removed = () => pixelsOf(page, '#app2d canvas.view2d', report.start.removed_rgb);
+    report.start.removed_px = await removed();
     await page.screenshot({ path: join(shots, 'dressing-start.png') });
     report.seeks = [];
     for (const f of [0.2, 0.45, 0.8]) {
       await page.evaluate((t) => window.formcam.seek(t), f * duration);
       const shown = await page.evaluate(() => window.formcam.state());
-      report.seeks.push({ shown, server: await server(shown.time_s) });
+      report.seeks.push({ shown, server: await server(shown.time_s), removed_px: await removed() });
     }
     report.after = await canvases(page, '#app2d canvas.view2d');
     await page.screenshot({ path: join(shots, 'dressing-seek.png') });
@@ -103,13 +126,25 @@ try {
     await page.evaluate(() => window.formcam.pause());
     report.play = { before, playing };
     report.mrr = await canvases(page, '#app2d .mrr canvas');
-  } else if (kind === 'correction') {
-    step = 'correction';
+  } else if (kind === 'correction' || kind === 'loop') {
+    step = kind;
     await frames(page);
     report.state = await page.evaluate(() => window.formcam.state());
+    report.legends = await legends(page);
+    report.title = await page.evaluate(() => document.querySelector('header strong')?.textContent ?? '');
     report.map = await canvases(page, '#app2d canvas.view2d');
     report.sections = await canvases(page, '#app2d .sections canvas');
-    await page.screenshot({ path: join(shots, 'correction.png') });
+    report.history = await canvases(page, '#app2d .history canvas');
+    report.study = await canvases(page, '#app2d .study canvas');
+    await page.screenshot({ path: join(shots, `${kind}.png`) });
+    if (kind === 'loop') {
+      // The first round's map: the deviations before correcting.
+      step = 'round 0';
+      await page.evaluate(() => window.formcam.round(0));
+      await frames(page);
+      report.round0 = { state: await page.evaluate(() => window.formcam.state()), map: await canvases(page, '#app2d canvas.view2d') };
+      await page.screenshot({ path: join(shots, 'loop-round0.png') });
+    }
   } else {
     errors.push(`driver: unknown kind ${kind}`);
   }

@@ -385,6 +385,13 @@ fn drive(kind: &str, out: &Path) -> serde_json::Value {
     r
 }
 
+/// No legend value of the plots is uPlot's `--` before the pointer comes.
+fn no_dashes(r: &serde_json::Value) {
+    let values = r["legends"].as_array().unwrap();
+    assert!(!values.is_empty(), "{r:#}");
+    assert!(values.iter().all(|v| v != "--"), "{:?}", r["legends"]);
+}
+
 /// A canvas drawn: more than a few colours.
 fn drawn(c: &serde_json::Value) -> bool {
     // Background, grid and a series at least (one line on a plot samples
@@ -399,6 +406,7 @@ fn the_browser_draws_the_winding_plots_with_every_point_the_server_sent() {
     }
     let r = drive("plots", &result("browser-plots"));
     assert_eq!(r["series"], r["expected"], "{r:#}");
+    no_dashes(&r);
     // Angle, thickness, pull speed, four axes, block times.
     let canvases = r["canvases"].as_array().unwrap();
     assert_eq!(canvases.len(), 8, "{r:#}");
@@ -445,6 +453,14 @@ fn the_browser_plays_the_dressing_at_the_points_the_server_computes() {
         "{r:#}"
     );
     assert_ne!(before["dresser"], playing["dresser"], "{r:#}");
+    no_dashes(&r);
+    // The region removed so far grows with the dresser: none at the start.
+    let mut removed = vec![r["start"]["removed_px"].as_u64().unwrap()];
+    for s in r["seeks"].as_array().unwrap() {
+        removed.push(s["removed_px"].as_u64().unwrap());
+    }
+    assert_eq!(removed[0], 0, "{removed:?}");
+    assert!(removed.windows(2).all(|w| w[0] < w[1]), "{removed:?}");
 }
 
 #[test]
@@ -468,4 +484,73 @@ fn the_browser_maps_every_measured_point_of_a_correction() {
         "{r:#}"
     );
     assert!(drawn(&r["map"][0]) && drawn(&r["sections"][0]), "{r:#}");
+    no_dashes(&r);
+    // The measurement file's path plain in the title (the job's path, and
+    // so the report's, runs through `crates/formcam-cli/../..`).
+    let title = r["title"].as_str().unwrap();
+    assert!(
+        title.ends_with("examples/correct/cmm.csv") && !title.contains("/../"),
+        "{title}"
+    );
+}
+
+#[test]
+fn the_browser_opens_a_closed_loop_with_the_map_of_each_round() {
+    if !browser_present() {
+        return;
+    }
+    let out = scratch("browser-loop").join("out");
+    let job = repo().join("examples/correct-panel-loop.toml");
+    let o = formcam()
+        .args(["correct", "simulate", s(&job), "-o", s(&out)])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let r = drive("loop", &out);
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let rounds = report["rounds"].as_array().unwrap().len();
+    let state = &r["state"];
+    assert_eq!(state["rounds"].as_u64().unwrap() as usize, rounds, "{r:#}");
+    assert_eq!(state["round"].as_u64().unwrap() as usize, rounds - 1);
+    let cmm = |k: usize| {
+        std::fs::read_to_string(out.join(format!("cmm-{k}.csv")))
+            .unwrap()
+            .lines()
+            .skip(1)
+            .filter(|l| !l.trim().is_empty())
+            .count() as u64
+    };
+    assert_eq!(state["points"].as_u64().unwrap(), cmm(rounds - 1), "{r:#}");
+    // Every round in the history plot, every study row in its plot.
+    let history = state["series"]["history"].as_array().unwrap();
+    assert!(
+        history
+            .iter()
+            .all(|n| n.as_u64().unwrap() as usize == rounds),
+        "{r:#}"
+    );
+    let study = report["section_study"].as_array().unwrap();
+    let drawn_study: u64 = state["series"]["study"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n.as_u64().unwrap())
+        .sum();
+    // A maximum and an RMS per row.
+    assert_eq!(drawn_study as usize, 2 * study.len(), "{r:#}");
+    for plot in ["map", "sections", "history", "study"] {
+        assert!(drawn(&r[plot][0]), "{plot}: {r:#}");
+    }
+    no_dashes(&r);
+    // Round 0's map: other deviations, so other colours.
+    assert_eq!(r["round0"]["state"]["round"], 0);
+    assert_eq!(r["round0"]["state"]["points"].as_u64().unwrap(), cmm(0));
+    assert_ne!(r["round0"]["map"][0]["hash"], r["map"][0]["hash"]);
+    assert!(
+        r["title"]
+            .as_str()
+            .unwrap()
+            .ends_with("examples/correct-panel-loop.toml")
+    );
 }

@@ -137,12 +137,33 @@ pub enum ViewError {
     },
     /// The folder is no result `formcam view` knows.
     #[error(
-        "{}: not a result folder: no summary.json (a winding or dressing result) and no report.json naming its measurements (a correction)",
+        "{}: not a result folder: no summary.json (a winding or dressing result) and no report.json naming its measurements (a correction) or its rounds (a closed-loop simulation)",
         path.display()
     )]
     UnknownResult {
         /// The folder.
         path: PathBuf,
+    },
+    /// A winding result without a program: its path and tables only.
+    #[error(
+        "{}: a winding result without a program (its summary.json names no `program_file`: the job wrote the path and its tables only); formcam view plays a winding program, so it opens the result of a job with a machine and a program (`formcam wind`), a dressing or a correction result",
+        path.display()
+    )]
+    NoProgram {
+        /// The folder.
+        path: PathBuf,
+    },
+    /// The folder holds results in its subfolders (as `formcam demo`
+    /// writes), not one itself.
+    #[error(
+        "{}: not a result folder but a folder of results: view one of its subfolders ({names})",
+        path.display()
+    )]
+    ResultsWithin {
+        /// The folder.
+        path: PathBuf,
+        /// The subfolders holding results, by name, comma-separated.
+        names: String,
     },
     /// The measurements a correction report names cannot be read.
     #[error("{}: `measurements` = {}: {source}", report.display(), measurements.display())]

@@ -10,9 +10,10 @@ use serde_json::{Map, Value};
 use crate::ViewError;
 
 /// What a result folder holds, told apart by its files: a correction
-/// writes `report.json` naming its measurements and no `summary.json`; a
-/// dressing's `summary.json` has `dressing_time_s`; any other
-/// `summary.json` is a winding result's.
+/// writes `report.json` naming its measurements (a closed-loop simulation,
+/// one listing its `rounds`) and no `summary.json`; a dressing's
+/// `summary.json` has `dressing_time_s`; any other `summary.json` is a
+/// winding result's.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ResultKind {
@@ -20,7 +21,8 @@ pub enum ResultKind {
     Winding,
     /// `formcam dress`: the profile, the dresser's path, the program.
     Dressing,
-    /// `formcam correct`: the measurements' deviations, the report.
+    /// `formcam correct`: the measurements' deviations, the report; or
+    /// `formcam correct simulate`: those of every round.
     Correction,
 }
 
@@ -29,8 +31,9 @@ impl ResultKind {
     ///
     /// # Errors
     ///
-    /// [`ViewError::NoFolder`], the summary's or report's read errors, or
-    /// [`ViewError::UnknownResult`].
+    /// [`ViewError::NoFolder`], the summary's or report's read errors,
+    /// [`ViewError::ResultsWithin`] for a folder of results (as `formcam
+    /// demo` writes), or [`ViewError::UnknownResult`].
     pub fn of(root: &Path) -> Result<Self, ViewError> {
         if !root.is_dir() {
             return Err(ViewError::NoFolder {
@@ -47,13 +50,39 @@ impl ResultKind {
             });
         }
         let report = root.join("report.json");
-        if report.is_file() && read_summary(&report)?.contains_key("measurements") {
-            return Ok(Self::Correction);
+        if report.is_file() {
+            let r = read_summary(&report)?;
+            if r.contains_key("measurements") || r.get("rounds").is_some_and(Value::is_array) {
+                return Ok(Self::Correction);
+            }
+        }
+        let within = results_within(root);
+        if !within.is_empty() {
+            return Err(ViewError::ResultsWithin {
+                path: root.to_path_buf(),
+                names: within.join(", "),
+            });
         }
         Err(ViewError::UnknownResult {
             path: root.to_path_buf(),
         })
     }
+}
+
+/// The subfolders of `root` that look like results (a `summary.json` or a
+/// `report.json`), by name.
+fn results_within(root: &Path) -> Vec<String> {
+    let Ok(entries) = std::fs::read_dir(root) else {
+        return Vec::new();
+    };
+    let mut names: Vec<String> = entries
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.join("summary.json").is_file() || p.join("report.json").is_file())
+        .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+        .collect();
+    names.sort();
+    names
 }
 
 /// What the view reads of a result folder.
@@ -89,7 +118,8 @@ impl RunFolder {
     ///
     /// # Errors
     ///
-    /// [`ViewError`] naming the file and the field.
+    /// [`ViewError`] naming the file and the field; [`ViewError::NoProgram`]
+    /// for a winding result without a program (the view plays one).
     pub fn open(root: &Path, machine: Option<&Path>) -> Result<Self, ViewError> {
         if !root.is_dir() {
             return Err(ViewError::NoFolder {
@@ -98,6 +128,11 @@ impl RunFolder {
         }
         let summary_path = root.join("summary.json");
         let summary = read_summary(&summary_path)?;
+        if !summary.contains_key("program_file") {
+            return Err(ViewError::NoProgram {
+                path: root.to_path_buf(),
+            });
+        }
         let machine = match machine {
             Some(path) => load_machine(path)?,
             None => summary_machine(&summary_path, &summary)?,

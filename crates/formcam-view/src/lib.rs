@@ -28,7 +28,9 @@ mod timeline;
 mod violations;
 
 pub use band::{BAND_POINTS, Band};
-pub use correction::{CorrectionBody, SectionStats, signed_deviation};
+pub use correction::{
+    CorrectionBody, DeviationMap, RoundMap, SectionStats, plain_path, signed_deviation,
+};
 pub use dressing::{
     DRESSING_PROGRAM, DresserPass, DresserSample, DressingBody, DressingView, MrrPlot,
 };

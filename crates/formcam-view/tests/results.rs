@@ -224,6 +224,102 @@ fn the_correction_map_holds_every_measured_point() {
         .fold(0.0f64, |m, d| m.max(d.abs()));
     let reported = c["report"]["max_deviation_mm"].as_f64().unwrap();
     assert!((worst - reported).abs() < 1e-9, "{worst} vs {reported}");
+    // The report names the file as the job joined it (through
+    // `crates/formcam-view/../..` here); the title shows it plain.
+    let named = c["report"]["measurements"].as_str().unwrap();
+    assert!(named.contains("/../"), "{named}");
+    let shown = c["measurements"].as_str().unwrap();
+    assert!(
+        Path::new(shown).components().all(|p| matches!(
+            p,
+            std::path::Component::Normal(_) | std::path::Component::RootDir
+        )),
+        "{shown}"
+    );
+    assert_eq!(
+        Path::new(shown).canonicalize().unwrap(),
+        cmm.canonicalize().unwrap()
+    );
+    assert_eq!(c["rounds"], serde_json::json!([]));
+}
+
+#[test]
+fn a_closed_loop_opens_as_a_correction_with_the_map_of_every_round() {
+    let dir = result("correct-panel-loop.toml");
+    let view = View::open(&dir, None, Page::default()).unwrap();
+    assert_eq!(view.kind(), ResultKind::Correction);
+    assert_eq!(get(&view, "/api/kind")["kind"], "correction");
+    let report = get(&view, "/api/result");
+    let c = get(&view, "/api/correction");
+    assert_eq!(c["report"], report);
+    let listed = report["rounds"].as_array().unwrap();
+    let rounds = c["rounds"].as_array().unwrap();
+    assert_eq!(
+        rounds.len() as u64,
+        report["iterations"].as_u64().unwrap() + 1
+    );
+    assert_eq!(rounds.len(), listed.len());
+    for (k, (r, l)) in rounds.iter().zip(listed).enumerate() {
+        assert_eq!(r["iteration"].as_u64().unwrap() as usize, k);
+        assert_eq!(r["measurements"], format!("cmm-{k}.csv"));
+        assert_eq!(r["program"], format!("program-{k}.nc"));
+        let n = rows(&dir.join(format!("cmm-{k}.csv")));
+        for key in ["x", "y", "z", "deviation", "section"] {
+            assert_eq!(r[key].as_array().unwrap().len(), n, "round {k}: {key}");
+        }
+        let sections = r["sections"].as_array().unwrap();
+        assert_eq!(sections.len() as u64, report["sections"].as_u64().unwrap());
+        // What the CMM saw: the largest |deviation| along the normal, as the
+        // report gives it (the CSV's 4 decimals apart).
+        let worst = numbers(&r["deviation"])
+            .iter()
+            .fold(0.0f64, |m, d| m.max(d.abs()));
+        let measured = l["measured_max_mm"].as_f64().unwrap();
+        assert!(
+            (worst - measured).abs() < 2e-4,
+            "round {k}: {worst} vs {measured}"
+        );
+    }
+    // The last round is shown first.
+    let last = rounds.last().unwrap();
+    for key in ["x", "y", "deviation", "sections", "measurements", "program"] {
+        assert_eq!(c[key], last[key], "{key}");
+    }
+    // Correcting shrinks what the CMM sees.
+    let worst = |r: &Value| {
+        numbers(&r["deviation"])
+            .iter()
+            .fold(0.0f64, |m, d| m.max(d.abs()))
+    };
+    assert!(worst(last) < 0.5 * worst(&rounds[0]));
+    let scenario = c["scenario"].as_str().unwrap();
+    assert!(!scenario.contains("/../"), "{scenario}");
+    assert_eq!(
+        Path::new(scenario).canonicalize().unwrap(),
+        repo()
+            .join("examples/correct-panel-loop.toml")
+            .canonicalize()
+            .unwrap()
+    );
+    assert_eq!(view.answer("/api/dressing").0, 404);
+    assert_eq!(view.answer("/api/plots").0, 404);
+}
+
+#[test]
+fn a_folder_of_results_names_the_ones_to_view() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("view-results/demo");
+    let _ = std::fs::remove_dir_all(&dir);
+    for (sub, file) in [("wound", "summary.json"), ("corrected", "report.json")] {
+        std::fs::create_dir_all(dir.join(sub)).unwrap();
+        std::fs::write(dir.join(sub).join(file), "{}").unwrap();
+    }
+    std::fs::create_dir_all(dir.join("inputs")).unwrap();
+    let e = View::open(&dir, None, Page::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("not a result folder"), "{e}");
+    assert!(e.contains("corrected, wound"), "{e}");
+    assert!(!e.contains("inputs"), "{e}");
 }
 
 #[test]
@@ -233,4 +329,15 @@ fn a_folder_without_summary_or_correction_report_is_no_result() {
     std::fs::create_dir_all(&dir).unwrap();
     let e = View::open(&dir, None, Page::default()).unwrap_err();
     assert!(e.to_string().contains("not a result folder"), "{e}");
+}
+
+#[test]
+fn a_winding_result_without_a_program_says_what_would_open() {
+    let dir = result("tube-helical.toml");
+    assert!(dir.join("summary.json").is_file());
+    let e = View::open(&dir, None, Page::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("a winding result without a program"), "{e}");
+    assert!(e.contains("dressing or a correction result"), "{e}");
 }

@@ -131,7 +131,7 @@ try {
     await frames(page);
     report.state = await page.evaluate(() => window.formcam.state());
     report.legends = await legends(page);
-    report.title = await page.evaluate(() => document.querySelector('header strong')?.textContent ?? '');
+    report.title = await page.evaluate(() => document.querySelector('#app2d header strong')?.textContent ?? '');
     report.map = await canvases(page, '#app2d canvas.view2d');
     report.sections = await canvases(page, '#app2d .sections canvas');
     report.history = await canvases(page, '#app2d .history canvas');

@@ -146,7 +146,7 @@ pub enum ViewError {
     },
     /// A winding result without a program: its path and tables only.
     #[error(
-        "{}: a winding result without a program (its summary.json names no `program_file`: the job wrote the path and its tables only); formcam view plays a winding program, so it opens the result of a job with a machine and a program (`formcam wind`), a dressing or a correction result",
+        "{}: a winding result without a program (its summary.json names no `program_file`: the job wrote its path and tables but no NC program); formcam view plays a winding program, so it opens the result of a job that writes one (with `[machine]`, `[motion]` and `[post]`), a dressing or a correction result",
         path.display()
     )]
     NoProgram {

@@ -37,7 +37,7 @@ export async function openCorrection(host: HTMLElement, ready: Promise<void>): P
   const n = c.x.length;
   const limit = Math.max(1e-9, ...c.deviation.map(Math.abs));
   host.innerHTML = `
-    <header><strong>formcam view: correction, ${esc(c.measurements)}</strong>
+    <header><strong>${api.PAGE_NAME}: correction, ${esc(c.measurements)}</strong>
       <span class="status">${n} points in ${c.sections.length} sections${c.program ? `, ${esc(c.program)}` : ''}</span></header>
     <main class="drawing"></main>
     <aside><section><h2>Deviation (mm)</h2><canvas class="colourbar" width="300" height="46"></canvas></section>

@@ -22,7 +22,8 @@ use crate::server::View;
 use crate::timeline::Timeline;
 
 /// How far the poses' and key points' interpolation between knots may stray
-/// from forward kinematics, mm (checked at each knot interval's middle).
+/// from forward kinematics, mm (checked at each knot interval's middle and
+/// quarters).
 pub const KNOT_TOLERANCE_MM: f64 = 1e-3;
 
 /// How far a link's orientation may stray, rad (checked likewise).
@@ -34,8 +35,8 @@ pub const KNOT_TOLERANCE_RAD: f64 = 1e-6;
 /// band laid stay exact).
 pub const MAX_KNOT_VALUES: usize = 2_000_000;
 
-/// Halvings of a block at most when placing knots.
-const MAX_DEPTH: u32 = 8;
+/// Halvings of a block at most when placing knots (4096 intervals).
+const MAX_DEPTH: u32 = 12;
 
 /// A report: the HTML and what the result read (an output must be none of them).
 #[derive(Debug, Clone)]
@@ -595,10 +596,24 @@ impl Placer<'_> {
         depth: u32,
     ) {
         let (s, e, from, to) = block;
+        let row_at = |f: f64| {
+            let at: Vec<f64> = from.iter().zip(to).map(|(p, q)| p + f * (q - p)).collect();
+            pose_row(self.machine, &at)
+        };
         let fm = 0.5 * (fa + fb);
-        let at: Vec<f64> = from.iter().zip(to).map(|(p, q)| p + fm * (q - p)).collect();
-        let rm = pose_row(self.machine, &at);
-        let (mm, rad) = row_error(&interpolate(ra, rb, 0.5, self.links), &rm, self.links);
+        let rm = row_at(fm);
+        // The middle and the quarters: an error that changes sign in the
+        // interval is zero at its middle.
+        let (mut mm, mut rad) = row_error(&interpolate(ra, rb, 0.5, self.links), &rm, self.links);
+        for q in [0.25, 0.75] {
+            let (m, r) = row_error(
+                &interpolate(ra, rb, q, self.links),
+                &row_at(fa + q * (fb - fa)),
+                self.links,
+            );
+            mm = mm.max(m);
+            rad = rad.max(r);
+        }
         if depth >= MAX_DEPTH || (mm <= KNOT_TOLERANCE_MM && rad <= KNOT_TOLERANCE_RAD) {
             self.worst_mm = self.worst_mm.max(mm);
             self.worst_rad = self.worst_rad.max(rad);
@@ -615,6 +630,21 @@ impl Knots {
     /// interpolation would stray from forward kinematics by more than the
     /// tolerances; beyond [`MAX_KNOT_VALUES`], as many as fit at equal time steps.
     pub fn of(tl: &Timeline) -> Self {
+        let machine = tl.machine();
+        let p = placed(tl);
+        let knots = p.finish(machine.links.len(), machine.points.len(), false);
+        if knots.count * knots.columns.len() > MAX_KNOT_VALUES {
+            let n = MAX_KNOT_VALUES / knots.columns.len().max(1);
+            return Self::thinned(tl, n.max(2));
+        }
+        knots
+    }
+}
+
+/// The knots of [`Knots::of`] before thinning: every block boundary and
+/// the halvings the tolerances ask for.
+fn placed(tl: &Timeline) -> Placer<'_> {
+    {
         let machine = tl.machine();
         let sim = tl.sim();
         let links = machine.links.len();
@@ -642,14 +672,11 @@ impl Knots {
             }
             row = next;
         }
-        let knots = p.finish(links, machine.points.len(), false);
-        if knots.count * knots.columns.len() > MAX_KNOT_VALUES {
-            let n = MAX_KNOT_VALUES / knots.columns.len().max(1);
-            return Self::thinned(tl, n.max(2));
-        }
-        knots
+        p
     }
+}
 
+impl Knots {
     /// `n` knots at equal time steps (drawing only).
     fn thinned(tl: &Timeline, n: usize) -> Self {
         let machine = tl.machine();
@@ -743,6 +770,71 @@ mod tests {
         for (x, y) in s.iter().zip(v(c)) {
             assert!((x - y).abs() < 1e-12, "{s:?} {c:?}");
         }
+    }
+
+    /// A program of the placement arm (every joint turning at once) on
+    /// its timeline.
+    fn arm_timeline() -> Timeline {
+        use formcam_nc::{Block, Feed, Program, write};
+        let m = formcam_machine::shipped::shipped("placement-arm")
+            .unwrap()
+            .machine()
+            .unwrap();
+        let axes = formcam_sim::program_axes(&m);
+        let w = axes.len();
+        let mut p = Program::new("ARM", axes);
+        p.blocks.push(Block::rapid(vec![0.0; w]));
+        for i in 1..12 {
+            let v = f64::from(i);
+            let target: Vec<f64> = (0..w).map(|k| 3.0 * v * (1.0 + k as f64 * 0.3)).collect();
+            p.blocks.push(Block::linear(target, Feed::InverseTime(0.5)));
+        }
+        let mut text = String::new();
+        write(&p, formcam_nc::Dialect::Cldata, &mut text).unwrap();
+        Timeline::from_program(m, &text, formcam_nc::Dialect::Cldata, Path::new("arm.cls")).unwrap()
+    }
+
+    #[test]
+    fn knots_keep_the_poses_within_the_tolerance_of_forward_kinematics() {
+        let tl = arm_timeline();
+        let machine = tl.machine();
+        let links = machine.links.len();
+        let stride = 7 * links + 3 * machine.points.len();
+        let p = placed(&tl);
+        // Within the tolerance where the placement looked (no block halved
+        // to the limit).
+        assert!(p.worst_mm <= KNOT_TOLERANCE_MM, "{}", p.worst_mm);
+        // More knots than block boundaries: the arm's joints turn together.
+        assert!(p.t.len() > tl.sim().len() + 1, "{}", p.t.len());
+        let rows: Vec<&[f64]> = p.values.chunks_exact(stride).collect();
+        let mut worst: f64 = 0.0;
+        for k in 0..p.t.len() - 1 {
+            let (ta, tb) = (p.t[k], p.t[k + 1]);
+            if tb <= ta {
+                continue;
+            }
+            // Between the points the placement checked.
+            for f in [0.125, 0.375, 0.625, 0.875] {
+                let t = ta + f * (tb - ta);
+                let exact = pose_row(machine, &tl.sim().sample(t));
+                let (mm, rad) =
+                    row_error(&interpolate(rows[k], rows[k + 1], f, links), &exact, links);
+                worst = worst.max(mm);
+                assert!(mm <= 2.0 * KNOT_TOLERANCE_MM, "{mm} mm at {t} s");
+                assert!(rad <= 2.0 * KNOT_TOLERANCE_RAD, "{rad} rad at {t} s");
+            }
+        }
+        assert!(worst > 0.0, "nothing compared");
+        // At a knot the row is forward kinematics itself.
+        for (k, &t) in p.t.iter().enumerate().step_by(7) {
+            let exact = pose_row(machine, &tl.sim().sample(t));
+            let (mm, _) = row_error(rows[k], &exact, links);
+            assert!(mm < 1e-9, "{mm} mm at knot {k}");
+        }
+        // Cut to the changing columns and back: the same rows.
+        let knots = p.finish(links, machine.points.len(), false);
+        assert!(knots.columns.len() < stride && !knots.columns.is_empty());
+        assert!(knots.worst_mm <= KNOT_TOLERANCE_MM);
     }
 
     #[test]

@@ -560,6 +560,9 @@ fn the_report_opens_offline_from_a_file_and_draws_every_view() {
         assert_eq!(shown["time_s"], server["t"], "{seek}");
         assert_eq!(shown["block"], server["block"], "{seek}");
         assert_eq!(shown["line"], server["line"], "{seek}");
+        // The band laid: the server's count, drawn.
+        assert!(server["laid"].is_u64(), "no band: {seek}");
+        assert_eq!(shown["band_points"], server["laid"], "{seek}");
         for (k, name) in names.iter().enumerate() {
             let a = shown["axes"][name].as_f64().unwrap();
             let b = server["axes"][k].as_f64().unwrap();

@@ -1,12 +1,14 @@
 import { defineConfig } from 'vite';
 
 // The page is served by `formcam view` from the files embedded in the
-// binary: everything local, nothing fetched from elsewhere.
+// binary: everything local, nothing fetched from elsewhere. One script
+// (dynamic imports inlined), so `formcam report` can inline the page whole.
 export default defineConfig({
   base: '/',
   build: {
     outDir: 'dist',
     emptyOutDir: true,
     chunkSizeWarningLimit: 2048,
+    rollupOptions: { output: { inlineDynamicImports: true } },
   },
 });

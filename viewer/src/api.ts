@@ -1,5 +1,15 @@
 // The data `formcam view` sends (see crates/formcam-view): the page draws
-// these poses and points as they come; it does no kinematics.
+// these poses and points as they come; it does no kinematics. Every answer
+// comes through `answer`: fetched from the server, or in a report
+// (`formcam report`) looked up in the data inlined in the page.
+import * as report from './report';
+
+/** How a URL's answer is obtained: `fetch` from `formcam view`, or the
+ * report's inlined data. */
+const answer: (url: string) => Promise<Response> = report.isReport() ? report.answer : (url) => fetch(url);
+
+/** What the page is: `formcam view` (served) or `formcam report` (a file). */
+export const PAGE_NAME = report.isReport() ? 'formcam report' : 'formcam view';
 
 /** An axis of the timeline. */
 export interface AxisHead { name: string; unit: 'deg' | 'mm' }
@@ -100,14 +110,14 @@ export interface Band {
 
 /** `url` as JSON, or null when the result has none (404). */
 export async function optional<T>(url: string): Promise<T | null> {
-  const r = await fetch(url);
+  const r = await answer(url);
   if (r.status === 404) return null;
   if (!r.ok) throw new Error(`${url}: ${r.status} ${(await r.text()).trim()}`);
   return (await r.json()) as T;
 }
 
 async function get(url: string): Promise<Response> {
-  const r = await fetch(url);
+  const r = await answer(url);
   if (!r.ok) throw new Error(`${url}: ${r.status} ${(await r.text()).trim()}`);
   return r;
 }
@@ -122,6 +132,6 @@ export async function text(url: string): Promise<string> {
 
 /** `/api/mandrel`, or null when the result has no path table. */
 export async function mandrel(): Promise<MandrelScene | null> {
-  const r = await fetch('/api/mandrel');
+  const r = await answer('/api/mandrel');
   return r.ok ? ((await r.json()) as MandrelScene) : null;
 }

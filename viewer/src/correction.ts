@@ -55,7 +55,7 @@ export async function openCorrection(host: HTMLElement, ready: Promise<void>): P
   const study = (Array.isArray(c.report.section_study) ? c.report.section_study : []) as Row[];
   const title = loop ? `correction loop, ${esc(c.scenario ?? '')}` : `correction, ${esc(c.measurements)}`;
   host.innerHTML = `
-    <header><strong>formcam view: ${title}</strong>
+    <header><strong>${api.PAGE_NAME}: ${title}</strong>
       <span class="status"></span></header>
     <main class="drawing"></main>
     <aside>${loop ? `<section><h2>Round shown</h2><div class="rounds">${maps.map((m, k) =>

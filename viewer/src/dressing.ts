@@ -62,7 +62,7 @@ export async function openDressing(host: HTMLElement, ready: Promise<void>): Pro
     api.json<DressingBody>('/api/dressing'),
   ]);
   host.innerHTML = `
-    <header><strong>formcam view: dressing ${esc(String(summary.job ?? ''))}</strong>
+    <header><strong>${api.PAGE_NAME}: dressing ${esc(String(summary.job ?? ''))}</strong>
       <span class="status">${d.passes.length} passes, ${d.lines.length} blocks, ${d.duration_s.toFixed(2)} s</span></header>
     <main class="drawing"></main>
     <aside><section><h2>Removal rate and feed against Z</h2><div class="mrr"></div></section>

@@ -99,7 +99,7 @@ async function main(): Promise<void> {
     api.optional<api.Band>('/api/band'),
   ]);
   const job = cleanPath(String(result.job ?? ''));
-  $('title').textContent = `formcam view: ${job.split('/').pop() ?? ''} on ${machine.name}`;
+  $('title').textContent = `${api.PAGE_NAME}: ${job.split('/').pop() ?? ''} on ${machine.name}`;
   $('title').title = job;
   $('status').textContent = `${tl.blocks} blocks, ${tl.duration_s.toFixed(2)} s` +
     (mandrel ? `, path ${mandrel.path_points} points` : '');

@@ -8,6 +8,7 @@ mod error;
 mod machine;
 mod output;
 mod progress;
+mod report;
 mod view;
 mod wind;
 
@@ -139,6 +140,18 @@ enum Command {
         /// The port on 127.0.0.1 (0: any free one).
         #[arg(long, default_value_t = 0)]
         port: u16,
+        /// The machine file, instead of the one the result's summary names.
+        #[arg(long)]
+        machine: Option<PathBuf>,
+    },
+    /// Writes a result's read-only views as one self-contained HTML file
+    /// (data and scripts inlined: it opens offline, with no server).
+    Report {
+        /// The result folder (of `formcam wind`, `dress` or `correct`).
+        folder: PathBuf,
+        /// The HTML file to write (not inside the result folder).
+        #[arg(short, long)]
+        output: PathBuf,
         /// The machine file, instead of the one the result's summary names.
         #[arg(long)]
         machine: Option<PathBuf>,
@@ -302,6 +315,11 @@ fn main() -> ExitCode {
             port,
             machine,
         } => view::run(&folder, port, machine),
+        Command::Report {
+            folder,
+            output,
+            machine,
+        } => report::run(&folder, &output, machine.as_deref()).map(|s| println!("{s}")),
     };
     finish(result)
 }

@@ -554,3 +554,132 @@ fn the_browser_opens_a_closed_loop_with_the_map_of_each_round() {
             .ends_with("examples/correct-panel-loop.toml")
     );
 }
+
+/// The tolerance of a report's payout point against the server's, mm
+/// (the report interpolates poses within 0.001 mm of forward kinematics).
+const REPORT_PAYOUT_MM: f64 = 0.01;
+
+#[test]
+fn the_report_opens_offline_from_a_file_and_draws_every_view() {
+    if !browser_present() {
+        return;
+    }
+    let dir = scratch("browser-report");
+    let wind = result("browser-report-wind");
+    let dress = dir.join("dress");
+    let correct = dir.join("correct");
+    for (verb, job, out) in [
+        ("dress", "examples/dress-ballscrew-nut.toml", &dress),
+        ("correct", "examples/correct-mould.toml", &correct),
+    ] {
+        let o = formcam()
+            .args([verb, s(&repo().join(job)), "-o", s(out)])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    let mut runs = Vec::new();
+    let mut servers = Vec::new();
+    for (kind, out) in [
+        ("winding", &wind),
+        ("dressing", &dress),
+        ("correction", &correct),
+    ] {
+        let file = dir.join(format!("{kind}.html"));
+        let o = formcam()
+            .args(["report", s(out), "-o", s(&file)])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+        eprintln!("{}", String::from_utf8_lossy(&o.stdout).trim_end());
+        let v = view(out);
+        runs.push(format!("{kind}={}={}", s(&file), v.url));
+        servers.push(v);
+    }
+    let report = dir.join("report.json");
+    let shots = repo().join("target/screenshots");
+    let mut args = vec![s(&shots).to_string(), s(&report).to_string()];
+    args.extend(runs);
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let node = driver("report.mjs", &args, &report);
+    drop(servers);
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap_or_default())
+            .unwrap_or_else(|_| panic!("{}", String::from_utf8_lossy(&node.stderr)));
+    assert!(node.status.success(), "{r:#}");
+    assert_eq!(r["errors"], serde_json::json!([]), "{r:#}");
+    let results = &r["results"];
+    for kind in ["winding", "dressing", "correction"] {
+        let k = &results[kind];
+        assert_eq!(
+            k["blocked"],
+            serde_json::json!([]),
+            "{kind} asked the network"
+        );
+        assert!(
+            k["title"].as_str().unwrap().starts_with("formcam report"),
+            "{k:#}"
+        );
+        assert!(
+            k["heading"].as_str().unwrap().starts_with("formcam report"),
+            "{k:#}"
+        );
+        assert!(drawn(&k["first"][0]), "{kind}: a flat canvas: {k:#}");
+    }
+    // The winding: drawn, changed by a seek, the state the server's.
+    let w = &results["winding"];
+    assert_ne!(
+        w["first"][0]["hash"], w["after"][0]["hash"],
+        "no change after a seek"
+    );
+    assert!(w["plots"].as_array().unwrap().iter().all(drawn), "{w:#}");
+    let names: Vec<&str> = w["axes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| a.as_str().unwrap())
+        .collect();
+    let payout = w["payout"].as_u64().unwrap() as usize;
+    for seek in w["seeks"].as_array().unwrap() {
+        let (shown, server) = (&seek["shown"], &seek["server"]);
+        assert_eq!(shown["time_s"], server["t"], "{seek}");
+        assert_eq!(shown["block"], server["block"], "{seek}");
+        assert_eq!(shown["line"], server["line"], "{seek}");
+        // The band laid: the server's count, drawn.
+        assert!(server["laid"].is_u64(), "no band: {seek}");
+        assert_eq!(shown["band_points"], server["laid"], "{seek}");
+        for (k, name) in names.iter().enumerate() {
+            let a = shown["axes"][name].as_f64().unwrap();
+            let b = server["axes"][k].as_f64().unwrap();
+            assert!((a - b).abs() <= 1e-9 * b.abs().max(1.0), "{name}: {seek}");
+        }
+        for c in 0..3 {
+            let a = shown["payout"][c].as_f64().unwrap();
+            let b = server["points"][payout][c].as_f64().unwrap();
+            assert!((a - b).abs() <= REPORT_PAYOUT_MM, "payout: {seek}");
+        }
+    }
+    // The dressing: the dresser where the server puts it.
+    let d = &results["dressing"];
+    assert_ne!(
+        d["first"][0]["hash"], d["after"][0]["hash"],
+        "no change after a seek"
+    );
+    assert!(drawn(&d["mrr"][0]), "{d:#}");
+    for seek in d["seeks"].as_array().unwrap() {
+        assert_eq!(seek["shown"]["block"], seek["server"]["block"], "{seek}");
+        for c in 0..2 {
+            let a = seek["shown"]["dresser"][c].as_f64().unwrap();
+            let b = seek["server"]["dresser"][c].as_f64().unwrap();
+            assert!((a - b).abs() <= 1e-9, "{seek}");
+        }
+    }
+    // The correction: every point of the map.
+    let c = &results["correction"];
+    assert_eq!(c["state"]["points"], c["server_points"], "{c:#}");
+    assert!(drawn(&c["sections"][0]), "{c:#}");
+    eprintln!(
+        "report: screenshots report-winding.png, report-plots.png, report-dressing.png, report-correction.png in {}",
+        shots.display()
+    );
+}

@@ -154,6 +154,17 @@ impl Band {
         Ok((!band.points.is_empty()).then_some(band))
     }
 
+    /// What [`Band::laid`] reads: per point its key angle, per layer its
+    /// first point, end and direction, the spindle axis, the slack (deg).
+    pub(crate) fn laid_table(&self) -> crate::report::LaidTable {
+        crate::report::LaidTable {
+            spindle: self.spindle,
+            keys: self.keys.clone(),
+            spans: self.spans.clone(),
+            slack_deg: LAID_SLACK_DEG,
+        }
+    }
+
     /// How many of [`Band::points`] are laid when the axes stand at `axes`
     /// (the timeline's values): the layers before in whole, and of the
     /// layer being wound the points whose spindle angle is reached.

@@ -17,6 +17,18 @@ pub enum ViewError {
         "the viewer page is not built into this formcam: run `npm ci && npm run build` in viewer/, then build formcam again"
     )]
     PageNotBuilt,
+    /// A report's output inside the result folder it reports.
+    #[error(
+        "{}: inside the result folder {}, which belongs to the run; write the report elsewhere",
+        output.display(),
+        folder.display()
+    )]
+    ReportInResult {
+        /// The output given.
+        output: PathBuf,
+        /// The result folder.
+        folder: PathBuf,
+    },
     /// The result folder is missing or no folder.
     #[error("{}: not a result folder (no such folder)", path.display())]
     NoFolder {

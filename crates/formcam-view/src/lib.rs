@@ -20,6 +20,7 @@ mod folder;
 mod overlay;
 mod page;
 mod plots;
+mod report;
 pub mod request;
 mod scene;
 mod server;
@@ -39,6 +40,9 @@ pub use folder::{ProgramFile, ResultKind, RunFolder, load_machine};
 pub use overlay::{EYE_POINTS, EyeTrajectory, Overlay, Shown};
 pub use page::Page;
 pub use plots::{AxisPlots, MeridianPlot, PullPlot, WindingPlots};
+pub use report::{
+    KNOT_TOLERANCE_MM, KNOT_TOLERANCE_RAD, MAX_KNOT_VALUES, Report, TIMELINE_HEAD, report,
+};
 pub use scene::{
     LinkScene, MERIDIAN_POINTS, MachineScene, MandrelScene, PATH_POINTS, Solid, SolidShape, thin,
 };

@@ -169,6 +169,15 @@ impl View {
         self.timeline.as_ref()
     }
 
+    /// The band's laying table (see [`crate::Band::laid`]), with a band.
+    pub(crate) fn band_laid(&self) -> Option<crate::report::LaidTable> {
+        self.overlay
+            .as_ref()?
+            .band
+            .as_ref()
+            .map(crate::Band::laid_table)
+    }
+
     /// The answer to a GET of `url`: status, content type, body.
     pub fn answer(&self, url: &str) -> (u16, &'static str, Vec<u8>) {
         match self.route(url) {

@@ -1,8 +1,8 @@
 //! The benches' two 10^5-block checks alone, for profilers: the 840D
 //! vessel program repeated to 10^5 blocks checked for collisions with its
 //! mandrel, and the snag check of a many-layer helical job. Prints the CPU
-//! time of each run (this thread's, from `/proc/thread-self/schedstat`, so
-//! that a loaded machine's waits do not count) and the wall time.
+//! time of each run (every thread's, from `/proc/self/stat`, so that a
+//! loaded machine's waits do not count) and the wall time.
 //!
 //! `cargo run --release -p formcam-sim --example check_1e5 -- [collisions|snag|both] [runs]`
 //! (`exhaustive` instead: the collisions, and the check without bounds
@@ -20,12 +20,20 @@ use formcam_sim::{
     read_program,
 };
 
-/// This thread's CPU time so far, s (0 where the kernel does not say).
+/// The process's CPU time so far (every thread's, user and system), s, at
+/// the kernel's 100 ticks a second (0 where the kernel does not say).
 fn cpu_s() -> f64 {
-    std::fs::read_to_string("/proc/thread-self/schedstat")
-        .ok()
-        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
-        .map_or(0.0, |ns| ns * 1e-9)
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    // The fields after the command's closing parenthesis: utime and stime
+    // are the 12th and 13th.
+    let rest = stat.rsplit_once(')').map_or("", |(_, r)| r);
+    let ticks: f64 = rest
+        .split_whitespace()
+        .skip(11)
+        .take(2)
+        .filter_map(|v| v.parse::<f64>().ok())
+        .sum();
+    ticks / 100.0
 }
 
 /// Runs `f` `runs` times; prints each run's CPU and wall time and the medians.

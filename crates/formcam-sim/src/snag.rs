@@ -475,7 +475,7 @@ pub fn check_snag_exhaustive(
 
 /// Blocks per run checked on one thread: fixed, so that the runs and what
 /// they find do not depend on the number of threads.
-const RUN_BLOCKS: usize = 2048;
+const RUN_BLOCKS: usize = 512;
 
 fn run(
     tl: &Timeline,

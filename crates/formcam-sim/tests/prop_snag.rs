@@ -90,6 +90,8 @@ proptest! {
         points in 8usize..64,
     ) {
         let (tl, fibre) = wound();
+        // Several of the check's runs of blocks, merged.
+        prop_assert!(tl.len() > 1500, "{} blocks", tl.len());
         let shape = if ball {
             format!("shape = \"sphere\"\nradius = {size}")
         } else {

@@ -353,6 +353,7 @@ impl FreeFibre {
             tl,
             track,
             fk: Fk::new(&self.machine),
+            mandrel_fk: Fk::for_links(&self.machine, &[self.machine.roles.mandrel]),
             poses: Vec::new(),
             planned: Vec::new(),
             nc: vec![0.0; tl.axes().len()],
@@ -368,6 +369,9 @@ pub struct FibreSampler<'a> {
     tl: &'a Timeline,
     track: &'a FibreTrack,
     fk: Fk,
+    /// The chain down to the mandrel link alone (the planned circuit's
+    /// frame).
+    mandrel_fk: Fk,
     poses: Vec<Isometry3<f64>>,
     planned: Vec<Isometry3<f64>>,
     nc: Vec<f64>,
@@ -411,7 +415,7 @@ impl FibreSampler<'_> {
         // The planned circuit's mandrel frame.
         let spindle_q = self.q[s];
         self.q[s] = phi0.to_radians();
-        self.fk.poses_into(&self.q, &mut self.planned);
+        self.mandrel_fk.poses_into(&self.q, &mut self.planned);
         self.q[s] = spindle_q;
         let frame = *self.planned.get(f.machine.roles.mandrel)?;
         let payout_m = frame.inverse_transform_point(&payout);

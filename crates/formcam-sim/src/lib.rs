@@ -53,5 +53,5 @@ pub use pipeline::{
     read_program,
 };
 pub use report::Report;
-pub use snag::{SnagOptions, check_snag};
+pub use snag::{SnagOptions, check_snag, check_snag_exhaustive};
 pub use timeline::{BlockSpan, Poses, Timeline};

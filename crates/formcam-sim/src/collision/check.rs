@@ -1,7 +1,9 @@
 //! The check over a timeline: per sample every solid placed by forward
-//! kinematics, the broad phase (the gap between the solids' boxes), then the
-//! exact distance (parry's `contact`, negative when the solids overlap)
-//! only for the pairs whose boxes come within the margin.
+//! kinematics, the broad phase (the gap between the solids' boxes, then the
+//! radial bound beside the mandrel), then the exact distance (parry's
+//! `contact`, negative when the solids overlap) only for the pairs the
+//! bounds leave within the margin; pairs a bound shows clear are skipped
+//! until their travel could bring them within it.
 
 use std::path::Path;
 
@@ -13,9 +15,10 @@ use parry3d_f64::shape::SharedShape;
 
 use super::mandrel::Laminate;
 use super::pairs::{Pair, pairs};
+use super::radial::Radial;
 use super::solids::{Body, Mount, machine_bodies, reach};
 use super::sweep::Sweep;
-use crate::{SimError, Timeline, Violation, ViolationKind};
+use crate::{BlockSpan, SimError, Timeline, Violation, ViolationKind};
 
 /// How many sampling steps beyond the margin the exact query looks.
 const LOOK_AHEAD: f64 = 8.0;
@@ -33,6 +36,8 @@ pub struct Collisions {
     /// The stage (layer) of each block, for the mandrel's solid.
     stages: Vec<usize>,
     margin: f64,
+    /// Per solid of revolution, its radial bound per stage.
+    radial: Vec<Option<Vec<Radial>>>,
 }
 
 impl Collisions {
@@ -74,7 +79,15 @@ impl Collisions {
     fn build(machine: &Machine, bodies: Vec<Body>, stages: Vec<usize>) -> Self {
         let changes: Vec<bool> = bodies.iter().map(|b| b.shapes.len() > 1).collect();
         let symmetric: Vec<bool> = bodies.iter().map(|b| b.revolution).collect();
+        let radial = bodies
+            .iter()
+            .map(|b| {
+                b.revolution
+                    .then(|| b.shapes.iter().map(Radial::of).collect())
+            })
+            .collect();
         Self {
+            radial,
             pairs: pairs(machine, &bodies, &changes),
             sweep: Sweep::new(machine, &bodies, &symmetric),
             bodies,
@@ -118,7 +131,205 @@ impl Collisions {
     /// margin apart at two samples is at least half the margin apart
     /// between them: no solid passes through another unseen. Pairs with no
     /// driven joint between them are checked once, at the start.
+    ///
+    /// What is found is what the exact distance of every pair at every
+    /// sample finds; the work is spared where a bound shows a pair clear:
+    /// per pair a lower bound of its distance less the margin, lowered by
+    /// the pair's travel bound as the samples go on, skips the pair while it
+    /// stays positive — a whole block at once when the block's travel cannot
+    /// use it up, and the forward kinematics of a sample where no pair is
+    /// left to look at. A pair looked at is bounded by the gap between the
+    /// solids' boxes, then, beside the mandrel, by the radial bound (the
+    /// `radial` module), and only then measured exactly.
     pub fn check(&self, tl: &Timeline, machine: &Machine) -> Vec<Violation> {
+        let grid = Grid::new(machine, tl);
+        let mut tallies: Vec<Tally> = vec![Tally::default(); self.pairs.len()];
+        let mut place = Placement::new(machine, self.bodies.len());
+        let mut g = grid.block_buffers(self.bodies.len());
+        // Per pair, a lower bound of its distance less the margin at the
+        // last sample looked at, lowered by the pair's travel at every
+        // sample since: while it stays positive the pair is skipped.
+        let mut slack = vec![f64::NEG_INFINITY; self.pairs.len()];
+        let mut active: Vec<usize> = Vec::with_capacity(self.pairs.len());
+        let mut last_stage = None;
+        for b in tl.blocks() {
+            self.plan_block(&grid, &b, &mut g);
+            if last_stage != Some(g.stage) {
+                slack.fill(f64::NEG_INFINITY);
+                last_stage = Some(g.stage);
+            }
+            // The pairs this block may bring within the margin.
+            let samples = (g.n + 1 - g.first) as f64;
+            active.clear();
+            for (k, pair) in self.pairs.iter().enumerate() {
+                if pair.rigid {
+                    if g.first == 0 {
+                        active.push(k);
+                    }
+                    continue;
+                }
+                let drift = (g.travel[pair.a] + g.travel[pair.b]) / g.n as f64 * samples;
+                if slack[k] > drift {
+                    slack[k] -= drift;
+                } else {
+                    active.push(k);
+                }
+            }
+            if active.is_empty() {
+                continue;
+            }
+            for s in g.first..=g.n {
+                let f = s as f64 / g.n as f64;
+                let at_start = b.index == 0 && s == 0;
+                place.clear();
+                for &k in &active {
+                    let pair = &self.pairs[k];
+                    if pair.rigid && !at_start {
+                        continue;
+                    }
+                    let (i, j) = (pair.a, pair.b);
+                    slack[k] -= (g.travel[i] + g.travel[j]) / g.n as f64;
+                    if slack[k] > 0.0 {
+                        continue;
+                    }
+                    place.at(machine, &self.bodies, &g, f);
+                    // The broad phase: the boxes' gap bounds the distance.
+                    let (bi, bj) = (
+                        place.aabb(&self.bodies, i, g.stage),
+                        place.aabb(&self.bodies, j, g.stage),
+                    );
+                    let gap = box_gap(&bi, &bj);
+                    if gap >= self.margin {
+                        slack[k] = gap - self.margin;
+                        continue;
+                    }
+                    if let Some(bound) = self.radial_bound(i, j, g.stage, &place.poses)
+                        && bound >= self.margin
+                    {
+                        slack[k] = bound - self.margin;
+                        continue;
+                    }
+                    let (si, sj) = (self.bodies[i].shape(g.stage), self.bodies[j].shape(g.stage));
+                    // Looked for up to a few steps beyond the margin, so that
+                    // a pair found clear is skipped for a few samples.
+                    let ahead = LOOK_AHEAD * self.step();
+                    let (pi, pj) = (&place.poses[i], &place.poses[j]);
+                    match distance(pi, si, pj, sj, self.margin + ahead) {
+                        None => slack[k] = ahead,
+                        Some(d) => {
+                            slack[k] = d - self.margin;
+                            if d < self.margin {
+                                tallies[k].hit(b.index, b.start_s + f * b.duration_s, d);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        self.violations(tl, &tallies)
+    }
+
+    /// [`Collisions::check`] the straightforward way, for tests: every pair
+    /// measured exactly at every sample of the same samples, no bound used.
+    #[doc(hidden)]
+    pub fn check_exhaustive(&self, tl: &Timeline, machine: &Machine) -> Vec<Violation> {
+        let grid = Grid::new(machine, tl);
+        let mut tallies: Vec<Tally> = vec![Tally::default(); self.pairs.len()];
+        let mut place = Placement::new(machine, self.bodies.len());
+        let mut g = grid.block_buffers(self.bodies.len());
+        let ahead = LOOK_AHEAD * self.step();
+        for b in tl.blocks() {
+            self.plan_block(&grid, &b, &mut g);
+            for s in g.first..=g.n {
+                let f = s as f64 / g.n as f64;
+                let at_start = b.index == 0 && s == 0;
+                place.clear();
+                place.at(machine, &self.bodies, &g, f);
+                for (pair, tally) in self.pairs.iter().zip(&mut tallies) {
+                    if pair.rigid && !at_start {
+                        continue;
+                    }
+                    let (i, j) = (pair.a, pair.b);
+                    let (si, sj) = (self.bodies[i].shape(g.stage), self.bodies[j].shape(g.stage));
+                    let (pi, pj) = (&place.poses[i], &place.poses[j]);
+                    if let Some(d) = distance(pi, si, pj, sj, self.margin + ahead)
+                        && d < self.margin
+                    {
+                        tally.hit(b.index, b.start_s + f * b.duration_s, d);
+                    }
+                }
+            }
+        }
+        self.violations(tl, &tallies)
+    }
+
+    /// Block `b`'s axis values at its ends (rad, mm), its stage, every
+    /// solid's travel bound and the number of steps it is sampled in.
+    fn plan_block(&self, grid: &Grid, b: &BlockSpan<'_>, g: &mut BlockGrid) {
+        for (k, s) in grid.scale.iter().enumerate().take(grid.width) {
+            g.from[k] = b.from[k] * s;
+            g.to[k] = b.to[k] * s;
+        }
+        g.stage = self.stages.get(b.index).copied().unwrap_or(usize::MAX);
+        for (i, t) in g.travel.iter_mut().enumerate() {
+            *t = self.sweep.travel(i, &g.from, &g.to);
+        }
+        let most = g.travel.iter().copied().fold(0.0, f64::max);
+        g.n = if b.duration_s > 0.0 || most > 0.0 {
+            (most / self.step()).ceil().max(1.0) as usize
+        } else {
+            1
+        };
+        g.first = if b.index == 0 { 0 } else { 1 };
+    }
+
+    /// The radial bound of the distance between solids `i` and `j` where
+    /// one of them is a solid of revolution and the other is not the bed's
+    /// plane.
+    fn radial_bound(
+        &self,
+        i: usize,
+        j: usize,
+        stage: usize,
+        poses: &[Isometry3<f64>],
+    ) -> Option<f64> {
+        let of = |r: usize, o: usize| -> Option<f64> {
+            let radial = self.radial[r].as_ref()?;
+            let body = &self.bodies[o];
+            if body.plane {
+                return None;
+            }
+            let profile = &radial[stage.min(radial.len() - 1)];
+            let rel = poses[r].inv_mul(&poses[o]);
+            Some(profile.bound_to(body.shape(stage), &rel))
+        };
+        of(i, j).or_else(|| of(j, i))
+    }
+
+    /// The violations of the pairs' tallies, in the order they happen.
+    fn violations(&self, tl: &Timeline, tallies: &[Tally]) -> Vec<Violation> {
+        let mut out: Vec<Violation> = self
+            .pairs
+            .iter()
+            .zip(tallies)
+            .filter_map(|(p, t)| t.violation(tl, p, &self.bodies, self.margin))
+            .collect();
+        out.sort_by(|a, b| a.time_s.total_cmp(&b.time_s).then(a.block.cmp(&b.block)));
+        out
+    }
+}
+
+/// How a timeline's axis values become joint values: per axis the factor
+/// from NC units (degrees for rotary axes) to the machine's (rad).
+struct Grid {
+    scale: Vec<f64>,
+    /// The axes both the machine and the program have.
+    width: usize,
+    axes: usize,
+}
+
+impl Grid {
+    fn new(machine: &Machine, tl: &Timeline) -> Self {
         let scale: Vec<f64> = machine
             .axes
             .iter()
@@ -130,95 +341,88 @@ impl Collisions {
                 }
             })
             .collect();
-        let w = scale.len().min(tl.axes().len());
-        let mut tallies: Vec<Tally> = vec![Tally::default(); self.pairs.len()];
-        let mut q = vec![0.0; machine.axes.len()];
-        let (mut from, mut to) = (q.clone(), q.clone());
-        let mut links: Vec<Isometry3<f64>> = Vec::with_capacity(machine.links.len());
-        let mut poses = vec![Isometry3::identity(); self.bodies.len()];
-        let mut boxes = Vec::with_capacity(self.bodies.len());
-        let step = self.step();
-        // Per pair, a lower bound of its distance less the margin at the
-        // last sample looked at, lowered by the pair's travel at every
-        // sample since: while it stays positive the pair is skipped.
-        let mut slack = vec![f64::NEG_INFINITY; self.pairs.len()];
-        let mut travel = vec![0.0; self.bodies.len()];
-        let mut last_stage = None;
-        for b in tl.blocks() {
-            for (k, s) in scale.iter().enumerate().take(w) {
-                from[k] = b.from[k] * s;
-                to[k] = b.to[k] * s;
-            }
-            let stage = self.stages.get(b.index).copied().unwrap_or(usize::MAX);
-            if last_stage != Some(stage) {
-                slack.fill(f64::NEG_INFINITY);
-                last_stage = Some(stage);
-            }
-            for (i, t) in travel.iter_mut().enumerate() {
-                *t = self.sweep.travel(i, &from, &to);
-            }
-            let most = travel.iter().copied().fold(0.0, f64::max);
-            let n = if b.duration_s > 0.0 || most > 0.0 {
-                (most / step).ceil().max(1.0) as usize
-            } else {
-                1
-            };
-            let first = if b.index == 0 { 0 } else { 1 };
-            for s in first..=n {
-                let f = s as f64 / n as f64;
-                for ((qk, start), end) in q.iter_mut().zip(&from).zip(&to).take(w) {
-                    *qk = start + f * (end - start);
-                }
-                machine.poses_into(&q, &mut links);
-                boxes.clear();
-                for (body, pose) in self.bodies.iter().zip(poses.iter_mut()) {
-                    *pose = match body.mount {
-                        Mount::Link(l) => links[l] * body.origin,
-                        Mount::World => body.origin,
-                    };
-                    boxes.push(body.aabb(pose, stage));
-                }
-                let t = b.start_s + f * b.duration_s;
-                let at_start = b.index == 0 && s == 0;
-                for ((pair, tally), slack) in self.pairs.iter().zip(&mut tallies).zip(&mut slack) {
-                    if pair.rigid && !at_start {
-                        continue;
-                    }
-                    let (i, j) = (pair.a, pair.b);
-                    *slack -= (travel[i] + travel[j]) / n as f64;
-                    if *slack > 0.0 {
-                        continue;
-                    }
-                    // The broad phase: the boxes' gap bounds the distance.
-                    let gap = box_gap(&boxes[i], &boxes[j]);
-                    if gap >= self.margin {
-                        *slack = gap - self.margin;
-                        continue;
-                    }
-                    let (si, sj) = (self.bodies[i].shape(stage), self.bodies[j].shape(stage));
-                    // Looked for up to a few steps beyond the margin, so that
-                    // a pair found clear is skipped for a few samples.
-                    let ahead = LOOK_AHEAD * step;
-                    match distance(&poses[i], si, &poses[j], sj, self.margin + ahead) {
-                        None => *slack = ahead,
-                        Some(d) => {
-                            *slack = d - self.margin;
-                            if d < self.margin {
-                                tally.hit(b.index, t, d);
-                            }
-                        }
-                    }
-                }
-            }
+        Self {
+            width: scale.len().min(tl.axes().len()),
+            axes: scale.len(),
+            scale,
         }
-        let mut out: Vec<Violation> = self
-            .pairs
-            .iter()
-            .zip(&tallies)
-            .filter_map(|(p, t)| t.violation(tl, p, &self.bodies, self.margin))
-            .collect();
-        out.sort_by(|a, b| a.time_s.total_cmp(&b.time_s).then(a.block.cmp(&b.block)));
-        out
+    }
+
+    fn block_buffers(&self, bodies: usize) -> BlockGrid {
+        BlockGrid {
+            from: vec![0.0; self.axes],
+            to: vec![0.0; self.axes],
+            travel: vec![0.0; bodies],
+            n: 1,
+            first: 1,
+            stage: 0,
+            width: self.width,
+        }
+    }
+}
+
+/// One block's samples: `n` steps from `from` to `to`, sample `first` to
+/// `n` taken.
+struct BlockGrid {
+    from: Vec<f64>,
+    to: Vec<f64>,
+    /// Each solid's travel bound over the block, mm.
+    travel: Vec<f64>,
+    n: usize,
+    first: usize,
+    stage: usize,
+    width: usize,
+}
+
+/// The solids placed at one sample: forward kinematics done once, when a
+/// pair first needs it, and each box when first asked for.
+struct Placement {
+    q: Vec<f64>,
+    links: Vec<Isometry3<f64>>,
+    poses: Vec<Isometry3<f64>>,
+    boxes: Vec<Option<Aabb>>,
+    placed: bool,
+}
+
+impl Placement {
+    fn new(machine: &Machine, bodies: usize) -> Self {
+        Self {
+            q: vec![0.0; machine.axes.len()],
+            links: Vec::with_capacity(machine.links.len()),
+            poses: vec![Isometry3::identity(); bodies],
+            boxes: vec![None; bodies],
+            placed: false,
+        }
+    }
+
+    /// Forgets the last sample.
+    fn clear(&mut self) {
+        self.placed = false;
+    }
+
+    /// Places every solid at the fraction `f` of the block `g`, unless the
+    /// sample is placed already.
+    fn at(&mut self, machine: &Machine, bodies: &[Body], g: &BlockGrid, f: f64) {
+        if self.placed {
+            return;
+        }
+        for ((qk, start), end) in self.q.iter_mut().zip(&g.from).zip(&g.to).take(g.width) {
+            *qk = start + f * (end - start);
+        }
+        machine.poses_into(&self.q, &mut self.links);
+        for (body, pose) in bodies.iter().zip(self.poses.iter_mut()) {
+            *pose = match body.mount {
+                Mount::Link(l) => self.links[l] * body.origin,
+                Mount::World => body.origin,
+            };
+        }
+        self.boxes.fill(None);
+        self.placed = true;
+    }
+
+    /// Solid `i`'s box at stage `stage`.
+    fn aabb(&mut self, bodies: &[Body], i: usize, stage: usize) -> Aabb {
+        *self.boxes[i].get_or_insert_with(|| bodies[i].aabb(&self.poses[i], stage))
     }
 }
 

@@ -13,13 +13,17 @@
 //!   joined directly, not ignored by the machine file).
 //! * `sweep` — how far a solid can travel within a block, so that the
 //!   samples are close enough.
-//! * `check` — per sample the broad phase (the gap between boxes), then the
-//!   exact distance only where the boxes come within the margin;
-//!   [`Collisions::check`].
+//! * `radial` — a lower bound of the distance from a solid to the mandrel
+//!   from radii and heights alone.
+//! * `check` — per sample the broad phase (the gap between boxes, the
+//!   radial bound), then the exact distance only where the bounds come
+//!   within the margin; a pair shown clear skipped until its travel could
+//!   close the gap; [`Collisions::check`].
 
 mod check;
 mod mandrel;
 mod pairs;
+mod radial;
 mod solids;
 mod sweep;
 

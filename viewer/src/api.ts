@@ -45,6 +45,7 @@ export type Solid = { origin: number[]; color: string } & (
   | { shape: 'box'; size: [number, number, number] }
   | { shape: 'cylinder'; radius: number; length: number }
   | { shape: 'sphere'; radius: number }
+  | MeshShape
 );
 
 /** `/api/machine`. */
@@ -134,4 +135,45 @@ export async function text(url: string): Promise<string> {
 export async function mandrel(): Promise<MandrelScene | null> {
   const r = await answer('/api/mandrel');
   return r.ok ? ((await r.json()) as MandrelScene) : null;
+}
+
+/**
+ * A mesh solid of `/api/machine`: the file the machine names, its
+ * triangles at `/api/mesh/N` (`mesh`), or why it could not be read.
+ */
+export interface MeshShape {
+  shape: 'mesh';
+  file: string;
+  /** N of `/api/mesh/N`; absent when the file could not be read. */
+  mesh?: number;
+  /** The file's triangles, and those drawn (fewer past the server's cap). */
+  triangles: number;
+  drawn: number;
+  /** Why it is not drawn, naming the file. */
+  error?: string;
+}
+
+/** `/api/mesh/N`: positions (mm, the visual's frame) and triangles' corners. */
+export interface MeshData { positions: Float32Array; indices: Uint32Array }
+
+/**
+ * `/api/mesh/N`, little-endian: the vertex and triangle counts (u32), the
+ * positions (f32, three per vertex), the corners (u32, three per triangle).
+ */
+export async function meshData(n: number): Promise<MeshData> {
+  const url = `/api/mesh/${n}`;
+  const buf = await (await get(url)).arrayBuffer();
+  const head = new DataView(buf, 0, Math.min(buf.byteLength, 8));
+  const nv = buf.byteLength >= 8 ? head.getUint32(0, true) : 0;
+  const nt = buf.byteLength >= 8 ? head.getUint32(4, true) : 0;
+  if (buf.byteLength < 8 || buf.byteLength !== 8 + 12 * nv + 12 * nt) {
+    throw new Error(`${url}: ${buf.byteLength} bytes, not a mesh of ${nv} vertices and ${nt} triangles`);
+  }
+  // Copied out: a typed array on the answer's bytes needs the platform's order.
+  const positions = new Float32Array(3 * nv);
+  const indices = new Uint32Array(3 * nt);
+  const v = new DataView(buf);
+  for (let k = 0; k < 3 * nv; k++) positions[k] = v.getFloat32(8 + 4 * k, true);
+  for (let k = 0; k < 3 * nt; k++) indices[k] = v.getUint32(8 + 12 * nv + 4 * k, true);
+  return { positions, indices };
 }

@@ -38,6 +38,11 @@ interface State {
   target: number[];
   /** The payout point in the picture, px from the canvas's centre. */
   payout_px: [number, number];
+  /** Triangles of the mesh solids drawn, what the page says about them
+   * (unreadable, thinned), and each one's centre in the picture, px. */
+  mesh_triangles: number;
+  mesh_notes: string[];
+  mesh_px: [number, number][];
 }
 
 interface FormcamApi {
@@ -51,8 +56,8 @@ interface FormcamApi {
   frames(): number;
   /** Turns following the payout point on or off. */
   follow(on: boolean): void;
-  /** Shows or hides the band and the eye trajectory, drawn at once. */
-  overlays(show: { band?: boolean; eye?: boolean }): void;
+  /** Shows or hides the band, the eye trajectory and the mesh solids, drawn at once. */
+  overlays(show: { band?: boolean; eye?: boolean; meshes?: boolean }): void;
 }
 
 declare global {
@@ -105,6 +110,7 @@ async function main(): Promise<void> {
     (mandrel ? `, path ${mandrel.path_points} points` : '');
 
   const scene = new Scene($('stage'), machine, mandrel, tl.payout);
+  await scene.meshesLoaded;
   if (eye) scene.addEye(eye);
   if (band) scene.addBand(band);
   const readouts = readoutTable(tl);
@@ -246,6 +252,7 @@ async function main(): Promise<void> {
       follow: scene.follow,
       ...scene.view(),
       payout_px: scene.payoutOffset(),
+      ...scene.meshes(),
     }),
     follow: (on: boolean) => {
       ($('follow') as HTMLInputElement).checked = on;

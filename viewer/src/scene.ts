@@ -3,12 +3,17 @@
 // poses the server sent; the camera's views and the follow mode.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { toCreasedNormals } from 'three/examples/jsm/utils/BufferGeometryUtils.js';
+import { meshData } from './api';
 import type { Band, EyeTrajectory, MachineScene, MandrelScene, Sample, Solid } from './api';
 
 export type View = 'front' | 'top' | 'axis';
 
 /** The colour of a solid named in a violation. */
 const ALARM = new THREE.Color('#ff2a1a');
+
+/** Edges of a mesh solid sharper than this are drawn sharp, the rest smooth. */
+const CREASE = THREE.MathUtils.degToRad(35);
 
 export class Scene {
   readonly renderer: THREE.WebGLRenderer;
@@ -27,6 +32,13 @@ export class Scene {
   private bandTotal = 0;
   private bandShown = 0;
   private eye: THREE.Line | null = null;
+  /** The mesh solids drawn and their triangles. */
+  private readonly meshSolids: THREE.Mesh[] = [];
+  private meshTriangles = 0;
+  /** What the page says about mesh solids (unreadable, thinned). */
+  private readonly meshNotes: string[] = [];
+  /** Resolved when every mesh solid's triangles are drawn (or said unreadable). */
+  readonly meshesLoaded: Promise<void>;
   /** Keep the payout point at the centre of the view. */
   follow = false;
   /** Whether anything changed since the last frame drawn. */
@@ -60,6 +72,7 @@ export class Scene {
       this.links.push(g);
       this.scene.add(g);
     }
+    this.meshesLoaded = this.loadMeshes(machine);
     if (mandrel) this.addMandrel(mandrel);
 
     this.payout = new THREE.Mesh(
@@ -76,6 +89,62 @@ export class Scene {
     this.scene.add(this.trail);
     this.resize();
     new ResizeObserver(() => this.resize()).observe(host);
+  }
+
+  /**
+   * Fills every mesh solid with its triangles from the server, shaded by
+   * normals computed here (smooth across edges under CREASE); a mesh the
+   * server could not read, or thinned for drawing, is said on the page.
+   */
+  private async loadMeshes(machine: MachineScene): Promise<void> {
+    const loads: Promise<void>[] = [];
+    machine.links.forEach((link, i) => link.solids.forEach((s, k) => {
+      if (s.shape !== 'mesh') return;
+      const m = this.solids[i][k];
+      if (s.mesh === undefined) {
+        this.meshNotes.push(`mesh not drawn: ${s.error ?? s.file}`);
+        return;
+      }
+      if (s.drawn < s.triangles) {
+        this.meshNotes.push(`${s.file}: drawn with ${s.drawn} of its ${s.triangles} triangles`);
+      }
+      loads.push(meshData(s.mesh).then((d) => {
+        const g = new THREE.BufferGeometry();
+        g.setAttribute('position', new THREE.BufferAttribute(d.positions, 3));
+        g.setIndex(new THREE.BufferAttribute(d.indices, 1));
+        const shaded = toCreasedNormals(g, CREASE);
+        shaded.computeBoundingBox();
+        shaded.computeBoundingSphere();
+        g.dispose();
+        m.geometry.dispose();
+        m.geometry = shaded;
+        this.meshSolids.push(m);
+        this.meshTriangles += d.indices.length / 3;
+        this.dirty = true;
+      }, (e: unknown) => {
+        this.meshNotes.push(`mesh not drawn: ${s.file}: ${e instanceof Error ? e.message : String(e)}`);
+      }));
+    }));
+    await Promise.all(loads);
+    if (this.meshNotes.length > 0) {
+      const note = document.createElement('div');
+      note.className = 'mesh-notes';
+      note.textContent = this.meshNotes.join('\n');
+      this.host.appendChild(note);
+    }
+  }
+
+  /**
+   * The mesh solids drawn: their triangles, what the page says about them,
+   * and where each one's centre is drawn, px from the canvas's centre.
+   */
+  meshes(): { mesh_triangles: number; mesh_notes: string[]; mesh_px: [number, number][] } {
+    const c = this.renderer.domElement;
+    const mesh_px = this.meshSolids.map((m): [number, number] => {
+      const p = new THREE.Box3().setFromObject(m).getCenter(new THREE.Vector3()).project(this.camera);
+      return [(p.x * c.clientWidth) / 2, (-p.y * c.clientHeight) / 2];
+    });
+    return { mesh_triangles: this.meshTriangles, mesh_notes: [...this.meshNotes], mesh_px };
   }
 
   private addMandrel(m: MandrelScene): void {
@@ -171,11 +240,12 @@ export class Scene {
     this.band.geometry.setDrawRange(0, 6 * Math.max(this.bandShown - 1, 0));
   }
 
-  /** Shows or hides the band and the eye trajectory (tests compare the pixels). */
-  overlays(show: { band?: boolean; eye?: boolean }): void {
+  /** Shows or hides the band, the eye trajectory and the mesh solids (tests compare the pixels). */
+  overlays(show: { band?: boolean; eye?: boolean; meshes?: boolean }): void {
     this.dirty = true;
     if (this.band && show.band !== undefined) this.band.visible = show.band;
     if (this.eye && show.eye !== undefined) this.eye.visible = show.eye;
+    if (show.meshes !== undefined) for (const m of this.meshSolids) m.visible = show.meshes;
   }
 
   /** Band points drawn, band points in all, eye trajectory points. */
@@ -353,8 +423,14 @@ function solid(s: Solid): THREE.Mesh {
     case 'sphere':
       geo = new THREE.SphereGeometry(s.radius, 32, 16);
       break;
+    case 'mesh':
+      // Empty until its triangles arrive (`Scene.loadMeshes`).
+      geo = new THREE.BufferGeometry();
+      break;
   }
-  const m = new THREE.Mesh(geo, new THREE.MeshStandardMaterial({ color: s.color, roughness: 0.7 }));
+  // A mesh file's triangles may face either way: both sides drawn.
+  const side = s.shape === 'mesh' ? THREE.DoubleSide : THREE.FrontSide;
+  const m = new THREE.Mesh(geo, new THREE.MeshStandardMaterial({ color: s.color, roughness: 0.7, side }));
   const o = s.origin;
   m.position.set(o[0], o[1], o[2]);
   m.quaternion.set(o[3], o[4], o[5], o[6]);

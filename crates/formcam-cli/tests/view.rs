@@ -683,3 +683,76 @@ fn the_report_opens_offline_from_a_file_and_draws_every_view() {
         shots.display()
     );
 }
+
+/// The colour of the 3-D view's background (`scene.ts`).
+const BACKGROUND: [u64; 3] = [0xdf, 0xe4, 0xea];
+
+#[test]
+fn the_browser_draws_the_machines_mesh_solids_and_names_a_missing_one() {
+    if !browser_present() {
+        return;
+    }
+    // The 4-axis winder's chuck flange is a mesh solid (machines/meshes/).
+    let out = result("browser-mesh");
+    let v = view(&out);
+    let missing = out.parent().unwrap().join("winder-no-mesh.toml");
+    let text = std::fs::read_to_string(machines().join("winder-4axis.toml")).unwrap();
+    assert!(text.contains("meshes/chuck-flange.stl"));
+    std::fs::write(
+        &missing,
+        text.replace("meshes/chuck-flange.stl", "meshes/no-such-flange.stl"),
+    )
+    .unwrap();
+    let v_missing = view_with(&out, &["--machine", s(&missing)]);
+    let report = out.parent().unwrap().join("mesh.json");
+    let shots = repo().join("target/screenshots");
+    let node = driver(
+        "mesh.mjs",
+        &[&v.url, s(&shots), s(&report), &v_missing.url],
+        &report,
+    );
+    drop(v);
+    drop(v_missing);
+    assert!(
+        node.status.success(),
+        "{}",
+        String::from_utf8_lossy(&node.stderr)
+    );
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(r["errors"], serde_json::json!([]), "{r:#}");
+    // Every triangle of the file drawn, nothing said against it.
+    let flange =
+        formcam_machine::read_mesh(&machines().join("meshes/chuck-flange.stl"), [1.0; 3]).unwrap();
+    let m = &r["mesh"];
+    assert_eq!(m["triangles"], flange.triangles.len(), "{m}");
+    assert_eq!(m["notes"], serde_json::json!([]), "{m}");
+    assert_eq!(m["notes_shown"], serde_json::json!([]), "{m}");
+    // Where the flange is drawn the picture is neither the background nor
+    // what it is with the meshes hidden.
+    let rgb = |v: &serde_json::Value| -> Vec<u64> {
+        v.as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c.as_u64().unwrap())
+            .collect()
+    };
+    let (shown, hidden) = (rgb(&m["shown"][0]), rgb(&m["hidden"][0]));
+    let far = |a: &[u64], b: &[u64]| a.iter().zip(b).any(|(x, y)| x.abs_diff(*y) > 8);
+    assert!(far(&shown, &BACKGROUND), "{m}");
+    assert!(far(&shown, &hidden), "{m}");
+    // A mesh file that is not there is said on the page, naming it.
+    let miss = &r["missing"];
+    assert_eq!(miss["triangles"], 0, "{miss}");
+    for key in ["notes", "notes_shown"] {
+        let notes = miss[key].as_array().unwrap();
+        assert!(
+            notes.len() == 1
+                && notes[0]
+                    .as_str()
+                    .unwrap()
+                    .contains("meshes/no-such-flange.stl"),
+            "{miss}"
+        );
+    }
+}

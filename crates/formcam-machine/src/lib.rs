@@ -35,6 +35,8 @@ pub use fk::Fk;
 pub use format::MachineFormat;
 pub use ik::{AxisTrack, IkMethod, Issue, IssueKind, ORIENTATION_SCALE, solve};
 pub use machine::{Axis, Joint, JointKind, KeyPoint, Link, Machine, Roles, Shape, Visual};
-pub use mesh::{MeshError, MeshFault, MeshFormat, MeshPlace, TriMesh, parse_mesh, read_mesh};
+pub use mesh::{
+    MeshError, MeshFault, MeshFormat, MeshPlace, TriMesh, parse_mesh, read_mesh, read_visual_mesh,
+};
 pub use target::{Target, placement_targets, winder_targets};
 pub use urdf::links_from_urdf;

@@ -168,6 +168,38 @@ pub fn read_mesh(path: &Path, scale: [f64; 3]) -> Result<TriMesh, MeshError> {
     })
 }
 
+/// Reads the mesh a machine's visual names, as every reader of a machine's
+/// meshes finds it: `file` relative to `dir`, the machine file's folder
+/// (the working folder when there is none); a shipped machine's mesh
+/// (`meshes/chuck-flange.stl`, [`crate::shipped::shipped_mesh`]) is taken
+/// from formcam itself when `dir` is none or holds no such file (a shipped
+/// machine named by its name, or its file copied without its meshes).
+/// Every vertex is multiplied by `scale`.
+///
+/// # Errors
+///
+/// As [`read_mesh`], naming the file as resolved.
+pub fn read_visual_mesh(
+    file: &str,
+    scale: [f64; 3],
+    dir: Option<&Path>,
+) -> Result<TriMesh, MeshError> {
+    let path = dir.map_or_else(|| PathBuf::from(file), |d| d.join(file));
+    match crate::shipped::shipped_mesh(file) {
+        Some(m) if dir.is_none() || !path.exists() => {
+            let name = PathBuf::from(m.file);
+            let format =
+                MeshFormat::of(&name).ok_or_else(|| MeshError::Extension { path: name.clone() })?;
+            parse_mesh(m.bytes, format, scale).map_err(|(place, fault)| MeshError::Format {
+                path: name,
+                place,
+                fault,
+            })
+        }
+        _ => read_mesh(&path, scale),
+    }
+}
+
 /// Parses the bytes of a mesh file in `format`, every vertex multiplied by
 /// `scale`.
 ///
@@ -562,6 +594,30 @@ mod tests {
             e.contains("part.ply: a mesh is an STL (.stl) or OBJ (.obj) file"),
             "{e}"
         );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_visual_mesh_is_the_machines_folders_else_the_shipped_one() {
+        let dir = std::env::temp_dir().join(format!("formcam-vmesh-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("meshes")).unwrap();
+        let shipped = crate::shipped::SHIPPED_MESHES[0];
+        let from_formcam = read_visual_mesh(shipped.file, [2.0; 3], None).unwrap();
+        let own = parse_mesh(shipped.bytes, MeshFormat::Stl, [2.0; 3]).unwrap();
+        assert_eq!(from_formcam, own);
+        // A copied machine without its meshes still finds the shipped one.
+        assert_eq!(
+            read_visual_mesh(shipped.file, [2.0; 3], Some(&dir)).unwrap(),
+            own
+        );
+        // A file beside the machine comes first.
+        std::fs::write(dir.join(shipped.file), ASCII).unwrap();
+        let beside = read_visual_mesh(shipped.file, ONE, Some(&dir)).unwrap();
+        assert_eq!(beside.triangles.len(), 1);
+        let e = read_visual_mesh("meshes/gone.obj", ONE, Some(&dir))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("meshes/gone.obj"), "{e}");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -1,5 +1,6 @@
 //! The machines shipped with formcam (`machines/*.toml`), compiled in so that
-//! a job can name one (`[machine] name = "winder-4axis"`) wherever it runs.
+//! a job can name one (`[machine] name = "winder-4axis"`) wherever it runs,
+//! and the mesh files they name (`machines/meshes/`), compiled in with them.
 
 use crate::{Machine, MachineError};
 
@@ -53,6 +54,28 @@ pub fn names() -> impl Iterator<Item = &'static str> {
     SHIPPED.iter().map(|s| s.name)
 }
 
+/// A mesh file a shipped machine names: the name as the machine file
+/// writes it (relative to `machines/`) and the file's bytes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ShippedMesh {
+    /// The name a shipped machine's `[[link.visual]] file` gives.
+    pub file: &'static str,
+    /// The file's bytes (STL or OBJ by the name's extension).
+    pub bytes: &'static [u8],
+}
+
+/// Every mesh file of the shipped machines.
+pub const SHIPPED_MESHES: [ShippedMesh; 1] = [ShippedMesh {
+    // The 4-axis winder's chuck flange (scripts/chuck_flange_stl.py).
+    file: "meshes/chuck-flange.stl",
+    bytes: include_bytes!("../../../machines/meshes/chuck-flange.stl"),
+}];
+
+/// The shipped mesh file named `file` (as a shipped machine names it).
+pub fn shipped_mesh(file: &str) -> Option<ShippedMesh> {
+    SHIPPED_MESHES.iter().find(|m| m.file == file).copied()
+}
+
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used)]
@@ -76,5 +99,33 @@ mod tests {
             assert_eq!(shipped(s.name), Some(s));
         }
         assert_eq!(shipped("winder-5axis"), None);
+    }
+
+    #[test]
+    fn every_mesh_a_shipped_machine_names_is_shipped_as_on_disk() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../machines");
+        let mut named = Vec::new();
+        for s in SHIPPED {
+            for link in s.machine().unwrap().links {
+                for v in link.visuals {
+                    if let crate::Shape::Mesh(file) = v.shape {
+                        named.push(file);
+                    }
+                }
+            }
+        }
+        assert!(!named.is_empty(), "no shipped machine carries a mesh");
+        for file in &named {
+            let m = shipped_mesh(file).unwrap_or_else(|| panic!("{file} is not shipped"));
+            assert_eq!(
+                m.bytes,
+                std::fs::read(format!("{dir}/{file}")).unwrap(),
+                "{file}"
+            );
+        }
+        for m in SHIPPED_MESHES {
+            assert!(named.iter().any(|f| f == m.file), "{} unused", m.file);
+        }
+        assert_eq!(shipped_mesh("meshes/none.stl"), None);
     }
 }

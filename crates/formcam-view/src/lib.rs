@@ -7,7 +7,7 @@
 //! the result folder's files under `/files/` (plain paths only, nothing
 //! outside the folder) and the JSON the page draws under `/api/`
 //! (`result`, `timeline?samples=N`, `sample?t=T`, `blocks`, `machine`,
-//! `mandrel`, `program`, `violations`, `eye`, `band`). The page does no
+//! `mandrel`, `mesh/N`, `program`, `violations`, `eye`, `band`). The page does no
 //! kinematics: every pose it draws is one the server sent ([`Timeline`],
 //! the simulator's timeline of formcam-sim), and every violation one the
 //! checks found ([`Violations`]).
@@ -17,6 +17,7 @@ mod correction;
 mod dressing;
 mod error;
 mod folder;
+mod mesh;
 mod overlay;
 mod page;
 mod plots;
@@ -37,6 +38,7 @@ pub use dressing::{
 };
 pub use error::ViewError;
 pub use folder::{ProgramFile, ResultKind, RunFolder, load_machine};
+pub use mesh::{DrawnMesh, MESH_TRIANGLES};
 pub use overlay::{EYE_POINTS, EyeTrajectory, Overlay, Shown};
 pub use page::Page;
 pub use plots::{AxisPlots, MeridianPlot, PullPlot, WindingPlots};

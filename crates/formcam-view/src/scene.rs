@@ -1,13 +1,15 @@
 //! What the page draws besides the timeline: the machine's solids in their
-//! links' frames and the mandrel (its meridian and the path) in the
-//! mandrel link's frame. The page places them by the poses it is sent.
+//! links' frames (boxes, cylinders, spheres and meshes, whose triangles
+//! are sent on their own) and the mandrel (its meridian and the path) in
+//! the mandrel link's frame. The page places them by the poses it is sent.
 
 use std::path::Path;
 
-use formcam_machine::{Machine, Shape};
+use formcam_machine::{Machine, Shape, read_visual_mesh};
 use serde::Serialize;
 
 use crate::ViewError;
+use crate::mesh::{DrawnMesh, MESH_TRIANGLES};
 
 /// The machine's solids.
 #[derive(Debug, Clone, Serialize)]
@@ -66,11 +68,38 @@ pub enum SolidShape {
         /// Radius, mm.
         radius: f64,
     },
+    /// A mesh file's triangles (`/api/mesh/N`), in the visual's frame.
+    Mesh {
+        /// The file as the machine names it.
+        file: String,
+        /// Its index for `/api/mesh/N`; none when it could not be read.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        mesh: Option<usize>,
+        /// The file's triangles.
+        triangles: usize,
+        /// The triangles drawn (fewer than the file's past
+        /// [`MESH_TRIANGLES`]).
+        drawn: usize,
+        /// Why the file could not be read (naming it as resolved).
+        #[serde(skip_serializing_if = "Option::is_none")]
+        error: Option<String>,
+    },
 }
 
 impl MachineScene {
-    /// The solids of `m` (mesh solids are not drawn yet).
+    /// The solids of `m`, its mesh files read as [`MachineScene::read`]
+    /// reads them without a folder (a shipped machine's).
     pub fn of(m: &Machine) -> Self {
+        Self::read(m, None).0
+    }
+
+    /// The solids of `m` and the meshes drawn: each mesh solid's file read
+    /// as the checker reads it (relative to `mesh_dir`, the machine file's
+    /// folder, its scale applied; a shipped machine's from formcam) and
+    /// thinned past [`MESH_TRIANGLES`]; a mesh that cannot be read is a
+    /// solid with its `error`.
+    pub fn read(m: &Machine, mesh_dir: Option<&Path>) -> (Self, Vec<DrawnMesh>) {
+        let mut meshes = Vec::new();
         let links = m
             .links
             .iter()
@@ -80,7 +109,7 @@ impl MachineScene {
                 solids: l
                     .visuals
                     .iter()
-                    .filter_map(|v| {
+                    .map(|v| {
                         let shape = match &v.shape {
                             Shape::Box(size) => SolidShape::Box { size: *size },
                             Shape::Cylinder { radius, length } => SolidShape::Cylinder {
@@ -88,25 +117,56 @@ impl MachineScene {
                                 length: *length,
                             },
                             Shape::Sphere(radius) => SolidShape::Sphere { radius: *radius },
-                            Shape::Mesh(_) => return None,
+                            Shape::Mesh(file) => mesh_solid(file, v.scale, mesh_dir, &mut meshes),
                         };
                         let t = v.origin.translation.vector;
                         let q = v.origin.rotation.quaternion();
-                        Some(Solid {
+                        Solid {
                             shape,
                             origin: [t.x, t.y, t.z, q.i, q.j, q.k, q.w],
                             color: v.color.clone(),
-                        })
+                        }
                     })
                     .collect(),
             })
             .collect();
-        Self {
+        let scene = Self {
             name: m.name.clone(),
             links,
             mandrel: m.roles.mandrel,
             payout: m.roles.payout,
+        };
+        (scene, meshes)
+    }
+}
+
+/// A mesh solid: its file read and added to `meshes`, or its error.
+fn mesh_solid(
+    file: &str,
+    scale: [f64; 3],
+    dir: Option<&Path>,
+    meshes: &mut Vec<DrawnMesh>,
+) -> SolidShape {
+    match read_visual_mesh(file, scale, dir) {
+        Ok(mesh) => {
+            let drawn = DrawnMesh::of(&mesh, MESH_TRIANGLES);
+            let shape = SolidShape::Mesh {
+                file: file.to_string(),
+                mesh: Some(meshes.len()),
+                triangles: drawn.file_triangles,
+                drawn: drawn.triangles.len(),
+                error: None,
+            };
+            meshes.push(drawn);
+            shape
         }
+        Err(e) => SolidShape::Mesh {
+            file: file.to_string(),
+            mesh: None,
+            triangles: 0,
+            drawn: 0,
+            error: Some(e.to_string()),
+        },
     }
 }
 

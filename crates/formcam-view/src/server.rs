@@ -22,6 +22,7 @@ use crate::ViewError;
 use crate::correction::CorrectionBody;
 use crate::dressing::DressingView;
 use crate::folder::{ResultKind, RunFolder, read_summary};
+use crate::mesh::DrawnMesh;
 use crate::overlay::{Overlay, Shown};
 use crate::page::Page;
 use crate::plots::WindingPlots;
@@ -50,6 +51,8 @@ pub struct View {
     root: PathBuf,
     summary: Vec<u8>,
     machine: Vec<u8>,
+    /// The machine's meshes drawn (`/api/mesh/N`), binary.
+    meshes: Vec<Vec<u8>>,
     mandrel: Option<Vec<u8>>,
     program: Option<String>,
     timeline: Option<Timeline>,
@@ -79,7 +82,7 @@ impl View {
         let real = root.canonicalize().map_err(|_| ViewError::NoFolder {
             path: root.to_path_buf(),
         })?;
-        let scene = MachineScene::of(&folder.machine);
+        let (scene, meshes) = MachineScene::read(&folder.machine, folder.machine_dir.as_deref());
         let mandrel = match &folder.path_table {
             Some((path, text)) => Some(json(&MandrelScene::from_path_table(
                 folder.machine.roles.mandrel,
@@ -119,6 +122,7 @@ impl View {
             root: real,
             summary: json(&folder.summary),
             machine: json(&scene),
+            meshes: meshes.iter().map(DrawnMesh::to_bytes).collect(),
             mandrel,
             program: folder.program.map(|p| p.text),
             timeline,
@@ -147,6 +151,7 @@ impl View {
             root: real,
             summary,
             machine: Vec::new(),
+            meshes: Vec::new(),
             mandrel: None,
             program: None,
             timeline: None,
@@ -221,6 +226,13 @@ impl View {
                 .map(|b| (JSON, b))
                 .ok_or(Refusal::NotFound),
             ["api", "machine"] => Ok((JSON, self.machine.clone())),
+            // The meshes the machine names, by their index in `/api/machine`.
+            ["api", "mesh", n] => n
+                .parse::<usize>()
+                .ok()
+                .and_then(|n| self.meshes.get(n))
+                .map(|b| (BINARY, b.clone()))
+                .ok_or(Refusal::NotFound),
             ["api", "mandrel"] => self
                 .mandrel
                 .clone()
@@ -333,6 +345,7 @@ struct BlocksBody<'a> {
 const JSON: &str = "application/json";
 const TEXT: &str = "text/plain; charset=utf-8";
 const ICON: &str = "image/x-icon";
+const BINARY: &str = "application/octet-stream";
 
 fn json<T: Serialize>(v: &T) -> Vec<u8> {
     // Our own plain data (numbers, strings) always serialises.

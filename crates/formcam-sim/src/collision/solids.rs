@@ -4,7 +4,7 @@
 use std::f64::consts::FRAC_PI_2;
 use std::path::Path;
 
-use formcam_machine::{Bed, Machine, Shape, Visual, read_mesh};
+use formcam_machine::{Bed, Machine, Shape, Visual, read_visual_mesh};
 use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
 use parry3d_f64::bounding_volume::Aabb;
 use parry3d_f64::shape::SharedShape;
@@ -112,8 +112,9 @@ pub(crate) fn reach(shapes: &[SharedShape], origin: &Isometry3<f64>) -> f64 {
 }
 
 /// The parry shape of a visual and its placement in the link's frame;
-/// meshes are read from `mesh_dir` (the machine file's folder) as the
-/// convex hull of their vertices.
+/// meshes are read relative to `mesh_dir` (the machine file's folder; a
+/// shipped machine's from formcam, `read_visual_mesh`) as the convex hull
+/// of their vertices.
 pub fn visual_shape(
     v: &Visual,
     mesh_dir: Option<&Path>,
@@ -127,8 +128,7 @@ pub fn visual_shape(
         ),
         Shape::Sphere(r) => (SharedShape::ball(*r), v.origin),
         Shape::Mesh(file) => {
-            let path = mesh_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
-            let mesh = read_mesh(&path, v.scale)?;
+            let mesh = read_visual_mesh(file, v.scale, mesh_dir)?;
             (hull(&mesh.vertices), v.origin)
         }
     })

@@ -12,6 +12,7 @@ import { AxesPlot } from './plot';
 import { WindingPlots } from './plots';
 import { openDressing } from './dressing';
 import { openCorrection } from './correction';
+import { FrameClock } from './perf';
 
 /** What `window.formcam.state()` returns: the state shown. */
 interface State {
@@ -123,18 +124,25 @@ async function main(): Promise<void> {
   let speed = 1;
   let frames = 0;
 
+  const perf = new FrameClock();
   let alarm = { axes: new Set<string>(), links: new Set<string>() };
   const show = (s: Sample, t: number) => {
     shown = s;
     time = t;
     scene.show(s);
+    perf.lap('poses');
     if (s.laid !== undefined) scene.showLaid(s.laid);
+    perf.lap('band');
     alarm = checks?.at(s, tl.axes) ?? alarm;
     scene.highlight(alarm.links);
+    perf.lap('checks');
     readouts(s, alarm.axes);
+    perf.lap('readouts');
     programView.mark(s.line);
+    perf.lap('program');
     plot?.at(s.t, s.axes);
     plots.at(s.t);
+    perf.lap('plots');
     ($('scrub') as HTMLInputElement).value = String(Math.round((t / Math.max(duration, 1e-9)) * 100000));
     ($('block') as HTMLInputElement).value = String(s.block);
     $('clock').textContent = `${clock(t)} / -${clock(duration - t)}`;
@@ -204,24 +212,38 @@ async function main(): Promise<void> {
 
   let last = performance.now();
   const frame = (now: number) => {
+    perf.begin();
     const dt = (now - last) / 1000;
     last = now;
     if (playing) {
       const t = Math.min(time + dt * speed, duration);
       const s = held(t);
+      perf.lap('sample');
       if (s !== shown) show(s, t);
       else {
         time = t;
         $('clock').textContent = `${clock(t)} / -${clock(duration - t)}`;
       }
+      perf.lap('controls');
       if (t >= duration) setPlaying(false);
     }
     // Drawn only when something changed: a paused page costs nothing.
     if (playing || scene.dirty) {
       scene.render();
       frames++;
+      perf.draw();
     }
+    perf.lap('render');
+    perf.end();
     requestAnimationFrame(frame);
+  };
+  window.formcamPerf = {
+    reset: () => perf.reset(),
+    report: () => perf.report(),
+    bare: (on) => {
+      scene.bare(on);
+      scene.render();
+    },
   };
 
   show(tl.samples[0], 0);

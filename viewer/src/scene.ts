@@ -178,6 +178,12 @@ export class Scene {
     if (this.eye && show.eye !== undefined) this.eye.visible = show.eye;
   }
 
+  /** Draws the background only (for measuring the floor of a frame's cost), or everything. */
+  bare(on: boolean): void {
+    this.dirty = true;
+    for (const o of this.scene.children) o.visible = !on;
+  }
+
   /** Band points drawn, band points in all, eye trajectory points. */
   counts(): { band_points: number; band_total: number; eye_points: number } {
     const eye = this.eye?.geometry.getAttribute('position').count ?? 0;

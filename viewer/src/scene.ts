@@ -226,7 +226,11 @@ export class Scene {
       this.trailPositions.set(q, 3 * n);
       this.trailCount++;
       this.trail.geometry.setDrawRange(0, Math.min(this.trailCount, 4096));
-      this.trail.geometry.attributes.position.needsUpdate = true;
+      // Only the point written goes to the GPU, not the whole trail.
+      const attr = this.trail.geometry.attributes.position as THREE.BufferAttribute;
+      attr.clearUpdateRanges();
+      attr.addUpdateRange(3 * n, 3);
+      attr.needsUpdate = true;
     }
   }
 

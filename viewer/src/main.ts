@@ -68,6 +68,12 @@ const SAMPLES = 4000;
  * each change of it is repainted, in software without a GPU.
  */
 const TEXT_MS = 100;
+/**
+ * While playing, the plots' cursors move at most this often, ms: a move
+ * redraws the whole plot (every series), the costliest text beside the
+ * picture.
+ */
+const PLOT_MS = 500;
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
 
@@ -133,6 +139,7 @@ async function main(): Promise<void> {
   let alarm = { axes: new Set<string>(), links: new Set<string>() };
   const put = changes();
   let texted = -Infinity;
+  let plotted = -Infinity;
   /** The text beside the picture at the state shown (`now`: at once, else at most every TEXT_MS). */
   const texts = (now: boolean) => {
     const at = performance.now();
@@ -143,8 +150,11 @@ async function main(): Promise<void> {
     perf.lap('readouts');
     programView.mark(s.line);
     perf.lap('program');
-    plot?.at(s.t, s.axes);
-    plots.at(s.t);
+    if (now || at - plotted >= PLOT_MS) {
+      plotted = at;
+      plot?.at(s.t, s.axes);
+      plots.at(s.t);
+    }
     perf.lap('plots');
     put.value('scrub', String(Math.round((time / Math.max(duration, 1e-9)) * 100000)));
     put.value('block', String(s.block));

@@ -146,10 +146,12 @@ async function main(): Promise<void> {
     if (!now && at - texted < TEXT_MS) return;
     texted = at;
     const s = shown;
-    readouts(s, alarm.axes);
-    perf.lap('readouts');
+    // The program's scroll first, while the page's layout is clean: moving
+    // it after another write would make the browser lay the page out at once.
     programView.mark(s.line);
     perf.lap('program');
+    readouts(s, alarm.axes);
+    perf.lap('readouts');
     if (now || at - plotted >= PLOT_MS) {
       plotted = at;
       plot?.at(s.t, s.axes);

@@ -200,7 +200,11 @@ async function main(): Promise<void> {
   // Every block's start and line (MB for 10^5 blocks): asked for when the
   // page is idle or a control first needs them, not before it is ready.
   let blocks: Promise<Blocks> | null = null;
-  const blocksNow = () => (blocks ??= api.json<Blocks>('/api/blocks'));
+  const blocksNow = () => (blocks ??= api.json<Blocks>('/api/blocks').catch((e) => {
+    // Asked again next time.
+    blocks = null;
+    throw e;
+  }));
   const toBlock = (b: number) => void blocksNow().then((bs) =>
     seek(bs.starts[Math.min(Math.max(b, 0), bs.starts.length - 1)] ?? 0));
 
@@ -219,10 +223,11 @@ async function main(): Promise<void> {
   });
 
   const setPlaying = (p: boolean) => {
+    const was = playing;
     playing = p;
     $('play').textContent = p ? 'pause' : 'play';
-    // Stopped: the text where the picture is.
-    if (!p) texts(true);
+    // Stopped: the text where the picture is (it may have lagged while playing).
+    if (was && !p) texts(true);
   };
   $('play').addEventListener('click', () => {
     if (!playing && time >= duration) time = 0;
@@ -230,13 +235,16 @@ async function main(): Promise<void> {
   });
   $('prev').addEventListener('click', () => { setPlaying(false); toBlock(shown.block - 1); });
   $('next').addEventListener('click', () => { setPlaying(false); toBlock(shown.block + 1); });
+  // The value asked for is read before stopping (which writes the time shown).
   $('scrub').addEventListener('input', (e) => {
+    const f = Number((e.target as HTMLInputElement).value) / 100000;
     setPlaying(false);
-    void seek((Number((e.target as HTMLInputElement).value) / 100000) * duration);
+    void seek(f * duration);
   });
   $('block').addEventListener('change', (e) => {
+    const b = Number((e.target as HTMLInputElement).value);
     setPlaying(false);
-    toBlock(Number((e.target as HTMLInputElement).value));
+    toBlock(b);
   });
   $('speed').addEventListener('change', (e) => { speed = Number((e.target as HTMLSelectElement).value); });
   for (const b of document.querySelectorAll<HTMLButtonElement>('#views button')) {

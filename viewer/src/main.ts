@@ -12,6 +12,7 @@ import { AxesPlot } from './plot';
 import { WindingPlots } from './plots';
 import { openDressing } from './dressing';
 import { openCorrection } from './correction';
+import { FrameClock } from './perf';
 
 /** What `window.formcam.state()` returns: the state shown. */
 interface State {
@@ -66,6 +67,18 @@ declare global {
 
 /** Timeline samples asked for drawing (decimated; numbers shown at a seek are exact). */
 const SAMPLES = 4000;
+/**
+ * While playing, the text beside the picture (readouts, program line and
+ * text, plots' cursors, clock, timeline bar) follows at most this often, ms:
+ * each change of it is repainted, in software without a GPU.
+ */
+const TEXT_MS = 100;
+/**
+ * While playing, the plots' cursors move at most this often, ms: a move
+ * redraws the whole plot (every series), the costliest text beside the
+ * picture.
+ */
+const PLOT_MS = 500;
 
 const $ = <T extends HTMLElement>(id: string) => document.getElementById(id) as T;
 
@@ -89,12 +102,11 @@ window.formcam = {
 };
 
 async function main(): Promise<void> {
-  const [result, machine, mandrel, tl, blocks, program] = await Promise.all([
+  const [result, machine, mandrel, tl, program] = await Promise.all([
     api.json<Record<string, unknown>>('/api/result'),
     api.json<api.MachineScene>('/api/machine'),
     api.mandrel(),
     api.json<TimelineBody>(`/api/timeline?samples=${SAMPLES}`),
-    api.json<Blocks>('/api/blocks'),
     api.text('/api/program'),
   ]);
   // The overlays after the result: no more than six requests at once.
@@ -129,22 +141,46 @@ async function main(): Promise<void> {
   let speed = 1;
   let frames = 0;
 
+  const perf = new FrameClock();
   let alarm = { axes: new Set<string>(), links: new Set<string>() };
-  const show = (s: Sample, t: number) => {
+  const put = changes();
+  let texted = -Infinity;
+  let plotted = -Infinity;
+  /** The text beside the picture at the state shown (`now`: at once, else at most every TEXT_MS). */
+  const texts = (now: boolean) => {
+    const at = performance.now();
+    if (!now && at - texted < TEXT_MS) return;
+    texted = at;
+    const s = shown;
+    // The program's scroll first, while the page's layout is clean: moving
+    // it after another write would make the browser lay the page out at once.
+    programView.mark(s.line);
+    perf.lap('program');
+    readouts(s, alarm.axes);
+    perf.lap('readouts');
+    if (now || at - plotted >= PLOT_MS) {
+      plotted = at;
+      plot?.at(s.t, s.axes);
+      plots.at(s.t);
+    }
+    perf.lap('plots');
+    put.value('scrub', String(Math.round((time / Math.max(duration, 1e-9)) * 100000)));
+    put.value('block', String(s.block));
+    put.text('clock', `${clock(time)} / -${clock(duration - time)}`);
+    put.text('program-line', s.line > 0 ? `line ${s.line}, block ${s.block}` : `block ${s.block}`);
+  };
+  /** Shows `s` at `t`; `animating`: a frame of the animation (the text may wait). */
+  const show = (s: Sample, t: number, animating = false) => {
     shown = s;
     time = t;
     scene.show(s);
+    perf.lap('poses');
     if (s.laid !== undefined) scene.showLaid(s.laid);
+    perf.lap('band');
     alarm = checks?.at(s, tl.axes) ?? alarm;
     scene.highlight(alarm.links);
-    readouts(s, alarm.axes);
-    programView.mark(s.line);
-    plot?.at(s.t, s.axes);
-    plots.at(s.t);
-    ($('scrub') as HTMLInputElement).value = String(Math.round((t / Math.max(duration, 1e-9)) * 100000));
-    ($('block') as HTMLInputElement).value = String(s.block);
-    $('clock').textContent = `${clock(t)} / -${clock(duration - t)}`;
-    $('program-line').textContent = s.line > 0 ? `line ${s.line}, block ${s.block}` : `block ${s.block}`;
+    perf.lap('checks');
+    texts(!animating);
   };
   /** The sample held at `t` while playing: the last one at or before it. */
   const held = (t: number) => {
@@ -167,37 +203,54 @@ async function main(): Promise<void> {
       void seek(t);
     })
     : null;
-  const blockStart = (b: number) => blocks.starts[Math.min(Math.max(b, 0), blocks.starts.length - 1)] ?? 0;
+  // Every block's start and line (MB for 10^5 blocks): asked for when the
+  // page is idle or a control first needs them, not before it is ready.
+  let blocks: Promise<Blocks> | null = null;
+  const blocksNow = () => (blocks ??= api.json<Blocks>('/api/blocks').catch((e) => {
+    // Asked again next time.
+    blocks = null;
+    throw e;
+  }));
+  const toBlock = (b: number) => void blocksNow().then((bs) =>
+    seek(bs.starts[Math.min(Math.max(b, 0), bs.starts.length - 1)] ?? 0));
 
   const programView = new ProgramView($('program'), program, (line) => {
     // The block on that line, or the first after it.
-    let lo = 0;
-    let hi = blocks.lines.length;
-    while (lo < hi) {
-      const mid = (lo + hi) >> 1;
-      if (blocks.lines[mid] < line) lo = mid + 1;
-      else hi = mid;
-    }
-    void seek(blockStart(lo));
+    void blocksNow().then((bs) => {
+      let lo = 0;
+      let hi = bs.lines.length;
+      while (lo < hi) {
+        const mid = (lo + hi) >> 1;
+        if (bs.lines[mid] < line) lo = mid + 1;
+        else hi = mid;
+      }
+      toBlock(lo);
+    });
   });
 
   const setPlaying = (p: boolean) => {
+    const was = playing;
     playing = p;
     $('play').textContent = p ? 'pause' : 'play';
+    // Stopped: the text where the picture is (it may have lagged while playing).
+    if (was && !p) texts(true);
   };
   $('play').addEventListener('click', () => {
     if (!playing && time >= duration) time = 0;
     setPlaying(!playing);
   });
-  $('prev').addEventListener('click', () => { setPlaying(false); void seek(blockStart(shown.block - 1)); });
-  $('next').addEventListener('click', () => { setPlaying(false); void seek(blockStart(shown.block + 1)); });
+  $('prev').addEventListener('click', () => { setPlaying(false); toBlock(shown.block - 1); });
+  $('next').addEventListener('click', () => { setPlaying(false); toBlock(shown.block + 1); });
+  // The value asked for is read before stopping (which writes the time shown).
   $('scrub').addEventListener('input', (e) => {
+    const f = Number((e.target as HTMLInputElement).value) / 100000;
     setPlaying(false);
-    void seek((Number((e.target as HTMLInputElement).value) / 100000) * duration);
+    void seek(f * duration);
   });
   $('block').addEventListener('change', (e) => {
+    const b = Number((e.target as HTMLInputElement).value);
     setPlaying(false);
-    void seek(blockStart(Number((e.target as HTMLInputElement).value)));
+    toBlock(b);
   });
   $('speed').addEventListener('change', (e) => { speed = Number((e.target as HTMLSelectElement).value); });
   for (const b of document.querySelectorAll<HTMLButtonElement>('#views button')) {
@@ -210,30 +263,46 @@ async function main(): Promise<void> {
 
   let last = performance.now();
   const frame = (now: number) => {
+    perf.begin();
     const dt = (now - last) / 1000;
     last = now;
     if (playing) {
       const t = Math.min(time + dt * speed, duration);
       const s = held(t);
-      if (s !== shown) show(s, t);
+      perf.lap('sample');
+      if (s !== shown) show(s, t, true);
       else {
         time = t;
-        $('clock').textContent = `${clock(t)} / -${clock(duration - t)}`;
+        texts(false);
       }
+      perf.lap('controls');
       if (t >= duration) setPlaying(false);
     }
-    // Drawn only when something changed: a paused page costs nothing.
-    if (playing || scene.dirty) {
+    // Drawn only when something changed (a new sample, the camera moved):
+    // a paused page, or one between samples, costs nothing.
+    if (scene.dirty) {
       scene.render();
       frames++;
+      perf.draw();
     }
+    perf.lap('render');
+    perf.end();
     requestAnimationFrame(frame);
+  };
+  window.formcamPerf = {
+    reset: () => perf.reset(),
+    report: () => perf.report(),
+    bare: (on) => {
+      scene.bare(on);
+      scene.render();
+    },
   };
 
   show(tl.samples[0], 0);
   scene.look('front');
   scene.render();
   requestAnimationFrame(frame);
+  if ('requestIdleCallback' in window) requestIdleCallback(() => void blocksNow(), { timeout: 5000 });
 
   window.formcam = {
     ready,
@@ -287,10 +356,33 @@ function readoutTable(tl: TimelineBody): (s: Sample, red: Set<string>) => void {
     table.appendChild(tr);
     return v;
   });
+  // Written only where they change: no style or layout work for the rest.
+  const text: string[] = [];
+  const alarm: boolean[] = [];
   return (s, red) => cells.forEach((c, k) => {
-    c.textContent = s.axes[k].toFixed(3);
-    c.classList.toggle('alarm', red.has(tl.axes[k].name));
+    const v = s.axes[k].toFixed(3);
+    if (v !== text[k]) c.textContent = text[k] = v;
+    const r = red.has(tl.axes[k].name);
+    if (r !== alarm[k]) c.classList.toggle('alarm', (alarm[k] = r));
   });
+}
+
+/** Writers of elements' text and inputs' values that touch the page only on a change. */
+function changes(): { text(id: string, v: string): void; value(id: string, v: string): void } {
+  const last = new Map<string, string>();
+  const changed = (key: string, v: string) => {
+    if (last.get(key) === v) return false;
+    last.set(key, v);
+    return true;
+  };
+  return {
+    text: (id, v) => { if (changed(`t:${id}`, v)) $(id).textContent = v; },
+    // An input's own value (a user may have moved it since).
+    value: (id, v) => {
+      const input = $(id) as HTMLInputElement;
+      if (input.value !== v) input.value = v;
+    },
+  };
 }
 
 /** A path with `.` and `dir/..` steps taken out, `/` between names. */

@@ -248,6 +248,12 @@ export class Scene {
     if (show.meshes !== undefined) for (const m of this.meshSolids) m.visible = show.meshes;
   }
 
+  /** Draws the background only (for measuring the floor of a frame's cost), or everything. */
+  bare(on: boolean): void {
+    this.dirty = true;
+    for (const o of this.scene.children) o.visible = !on;
+  }
+
   /** Band points drawn, band points in all, eye trajectory points. */
   counts(): { band_points: number; band_total: number; eye_points: number } {
     const eye = this.eye?.geometry.getAttribute('position').count ?? 0;
@@ -290,7 +296,11 @@ export class Scene {
       this.trailPositions.set(q, 3 * n);
       this.trailCount++;
       this.trail.geometry.setDrawRange(0, Math.min(this.trailCount, 4096));
-      this.trail.geometry.attributes.position.needsUpdate = true;
+      // Only the point written goes to the GPU, not the whole trail.
+      const attr = this.trail.geometry.attributes.position as THREE.BufferAttribute;
+      attr.clearUpdateRanges();
+      attr.addUpdateRange(3 * n, 3);
+      attr.needsUpdate = true;
     }
   }
 

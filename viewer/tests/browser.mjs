@@ -121,6 +121,64 @@ const open = async (page, base) => {
   }
 };
 
+/** Seconds each case of `frameCosts` plays. */
+const COST_S = 2;
+
+/**
+ * Where a frame's time goes while playing (measured, never asserted): per
+ * phase of the page's animation loop (`window.formcamPerf`), the frames per
+ * second with everything drawn, without the band and the eye trajectory,
+ * with the 3-D scene bare (its background only), and the floor of this
+ * browser's software GL: an empty WebGL canvas of the same size cleared
+ * every frame in a page of its own.
+ */
+const frameCosts = async (page, speed) => {
+  const play = (s) => page.evaluate(async ([s, ms]) => {
+    const f = window.formcam;
+    await f.seek(0);
+    window.formcamPerf.reset();
+    f.play(s);
+    await new Promise((r) => setTimeout(r, ms));
+    f.pause();
+    const r = window.formcamPerf.report();
+    return { fps: r.drawn / r.seconds, ...r };
+  }, [s, COST_S * 1000]);
+  const all = await play(speed);
+  await page.evaluate(() => window.formcam.overlays({ band: false, eye: false }));
+  const no_overlays = await play(speed);
+  await page.evaluate(() => window.formcam.overlays({ band: true, eye: true }));
+  await page.evaluate(() => window.formcamPerf.bare(true));
+  const bare = await play(speed);
+  await page.evaluate(() => window.formcamPerf.bare(false));
+  const size = await page.evaluate(() => {
+    const c = document.querySelector('#stage canvas');
+    return [c.width, c.height];
+  });
+  const blank = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  const empty_webgl_fps = await blank.evaluate(async ([w, h, ms]) => {
+    const c = document.createElement('canvas');
+    c.width = w;
+    c.height = h;
+    document.body.appendChild(c);
+    const gl = c.getContext('webgl2', { antialias: false, preserveDrawingBuffer: true });
+    let n = 0;
+    const t0 = performance.now();
+    await new Promise((done) => {
+      const tick = () => {
+        gl.clearColor(0.87, 0.89, 0.92, 1);
+        gl.clear(gl.COLOR_BUFFER_BIT);
+        n++;
+        if (performance.now() - t0 < ms) requestAnimationFrame(tick);
+        else done();
+      };
+      requestAnimationFrame(tick);
+    });
+    return n / ((performance.now() - t0) / 1000);
+  }, [size[0], size[1], COST_S * 1000]);
+  await blank.close();
+  return { canvas: size, all, no_overlays, bare, empty_webgl_fps };
+};
+
 try {
   const page = await newPage(url);
 
@@ -215,7 +273,9 @@ try {
     return (f.frames() - n0) / ((performance.now() - t0) / 1000);
   }, speed);
   await page.screenshot({ path: join(shots, 'playing.png') });
-  Object.assign(results, { tti_s, fps, speed, duration_s, before, after, states });
+  step = 'frame costs';
+  const frame_costs = await frameCosts(page, speed);
+  Object.assign(results, { tti_s, fps, speed, duration_s, before, after, states, frame_costs });
   // One page at a time: the first one's drawing would slow the second.
   await page.close();
   if (violationsUrl) {

@@ -14,6 +14,13 @@ const ALARM = new THREE.Color('#ff2a1a');
 
 /** Edges of a mesh solid sharper than this are drawn sharp, the rest smooth. */
 const CREASE = THREE.MathUtils.degToRad(35);
+/**
+ * How far the drawn meridian may stray from the one the server sent (mm):
+ * the surface is drawn, never measured, and a straight or gently curved
+ * meridian needs few of its points (drawing cost grows with triangles in
+ * software GL).
+ */
+const MERIDIAN_TOLERANCE_MM = 0.02;
 
 export class Scene {
   readonly renderer: THREE.WebGLRenderer;
@@ -150,7 +157,7 @@ export class Scene {
   private addMandrel(m: MandrelScene): void {
     const g = this.links[m.link];
     if (!g) return;
-    const pts = m.meridian.map(([z, r]) => new THREE.Vector2(r, z));
+    const pts = simplified(m.meridian, MERIDIAN_TOLERANCE_MM).map(([z, r]) => new THREE.Vector2(r, z));
     if (pts.length >= 2) {
       const lathe = new THREE.LatheGeometry(pts, 96);
       // The lathe turns about y; the mandrel's axis is the link's z.
@@ -445,4 +452,40 @@ function solid(s: Solid): THREE.Mesh {
   m.position.set(o[0], o[1], o[2]);
   m.quaternion.set(o[3], o[4], o[5], o[6]);
   return m;
+}
+
+/**
+ * The points of the polyline `pts` (z, r) to draw it within `tol` mm
+ * (Douglas–Peucker): the ends always, and the point farthest from each
+ * chord while it is farther than `tol`.
+ */
+export function simplified(pts: [number, number][], tol: number): [number, number][] {
+  if (pts.length <= 2) return pts;
+  const keep = new Uint8Array(pts.length);
+  keep[0] = 1;
+  keep[pts.length - 1] = 1;
+  const stack: [number, number][] = [[0, pts.length - 1]];
+  while (stack.length > 0) {
+    const [a, b] = stack.pop() as [number, number];
+    const [az, ar] = pts[a];
+    const dz = pts[b][0] - az;
+    const dr = pts[b][1] - ar;
+    const len = Math.hypot(dz, dr);
+    let far = -1;
+    let worst = tol;
+    for (let i = a + 1; i < b; i++) {
+      const ez = pts[i][0] - az;
+      const er = pts[i][1] - ar;
+      const d = len > 0 ? Math.abs(ez * dr - er * dz) / len : Math.hypot(ez, er);
+      if (d > worst) {
+        worst = d;
+        far = i;
+      }
+    }
+    if (far >= 0) {
+      keep[far] = 1;
+      stack.push([a, far], [far, b]);
+    }
+  }
+  return pts.filter((_, i) => keep[i] === 1);
 }

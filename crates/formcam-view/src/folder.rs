@@ -65,6 +65,8 @@ pub struct RunFolder {
     pub summary: Map<String, Value>,
     /// The machine the program runs on.
     pub machine: Machine,
+    /// The machine file it was read from (`None`: a shipped machine).
+    pub machine_file: Option<PathBuf>,
     /// The program file (`program.<ext>`), its text and dialect.
     pub program: Option<ProgramFile>,
     /// The path table (`path.csv`, or the first layer's), when written.
@@ -98,8 +100,8 @@ impl RunFolder {
         }
         let summary_path = root.join("summary.json");
         let summary = read_summary(&summary_path)?;
-        let machine = match machine {
-            Some(path) => load_machine(path)?,
+        let (machine, machine_file) = match machine {
+            Some(path) => (load_machine(path)?, Some(path.to_path_buf())),
             None => summary_machine(&summary_path, &summary)?,
         };
         let program = match summary.get("program_file").and_then(Value::as_str) {
@@ -110,6 +112,7 @@ impl RunFolder {
             root: root.to_path_buf(),
             summary,
             machine,
+            machine_file,
             program,
             path_table: read_path_table(root)?,
         })
@@ -149,20 +152,23 @@ pub fn load_machine(path: &Path) -> Result<Machine, ViewError> {
 }
 
 /// The machine the summary names: `machine_shipped`, or `machine_file`
-/// relative to the folder of `job` (as the run was given it).
-fn summary_machine(path: &Path, summary: &Map<String, Value>) -> Result<Machine, ViewError> {
+/// relative to the folder of `job` (as the run was given it), and that file.
+fn summary_machine(
+    path: &Path,
+    summary: &Map<String, Value>,
+) -> Result<(Machine, Option<PathBuf>), ViewError> {
     if let Some(name) = summary.get("machine_shipped").and_then(Value::as_str) {
         let shipped =
             formcam_machine::shipped::shipped(name).ok_or_else(|| ViewError::UnknownShipped {
                 path: path.to_path_buf(),
                 name: formcam_files::quote(name).to_string(),
             })?;
-        return Machine::from_file_text(Path::new(name), shipped.text).map_err(|source| {
-            ViewError::Machine {
+        return Machine::from_file_text(Path::new(name), shipped.text)
+            .map(|m| (m, None))
+            .map_err(|source| ViewError::Machine {
                 path: PathBuf::from(name),
                 source,
-            }
-        });
+            });
     }
     let file =
         summary
@@ -183,7 +189,7 @@ fn summary_machine(path: &Path, summary: &Map<String, Value>) -> Result<Machine,
             job,
         });
     }
-    load_machine(&machine)
+    Ok((load_machine(&machine)?, Some(machine)))
 }
 
 fn read_program(root: &Path, summary: &Path, name: &str) -> Result<ProgramFile, ViewError> {

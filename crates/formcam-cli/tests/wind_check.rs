@@ -1,9 +1,11 @@
 //! `formcam wind` checks the program it wrote on its machine: every bundled
 //! winding program is clean (the planner keeps the machines' acceleration
 //! limits by default), the report in `check.json` is the one `formcam
-//! check` writes for the same file, a job that switches the acceleration
-//! limits off is told its violations and exits 3 with its program written,
-//! and `--no-check` skips the check.
+//! check --mandrel JOB` writes for the same file (the mandrel grown by the
+//! laminate and the free fibre checked too), a job that switches the
+//! acceleration limits off is told its violations and exits 3 with its
+//! program written, an eye too close to the mandrel is found by both, and
+//! `--no-check` skips the check.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
@@ -59,13 +61,14 @@ fn every_bundled_winding_program_checks_clean() {
         let report = json(out.join("check.json"));
         assert_eq!(report["clean"], true, "{name}: {report}");
         assert_eq!(report["violations"], serde_json::json!([]), "{name}");
-        // The same verdict as `formcam check` on the written file.
+        // The same verdict as `formcam check --mandrel JOB` on the written
+        // file.
         let program = PathBuf::from(report["program"].as_str().unwrap());
         assert!(program.starts_with(&out), "{}", program.display());
         let again = dir.join(format!("{name}.json"));
         let o = formcam()
             .args(["check", s(&program), "--machine", &machine_of(&report)])
-            .args(["-o", s(&again)])
+            .args(["--mandrel", s(job), "-o", s(&again)])
             .output()
             .unwrap();
         assert_eq!(o.status.code(), Some(0), "{name}: {}", stdout(&o));
@@ -128,6 +131,48 @@ fn a_job_without_acceleration_limits_is_told_its_violations() {
         "{} vs {}",
         time(&kept),
         time(&out)
+    );
+}
+
+/// The 4-axis tube's hoop layer alone, its eye `clearance` mm over the
+/// mandrel (the eye's roller has a radius of 12 mm).
+fn hoop(clearance: &str) -> String {
+    let text = example("tube-layers-4axis.toml");
+    let (head, _) = text.split_once("\n[[layer]]\nkind = \"helical\"").unwrap();
+    let (_, tail) = text.split_once("\n[eye]").unwrap();
+    format!("{head}\n[eye]{tail}").replace("clearance = 20.0", &format!("clearance = {clearance}"))
+}
+
+#[test]
+fn the_mandrel_and_the_fibre_are_checked_as_check_does() {
+    // 6 mm: the roller runs inside the mandrel's solid (the bundled jobs,
+    // clean, are compared above).
+    let (o, out6) = run_file("hoop6", &["wind"], "job.toml", &hoop("6.0"), &[], &[]);
+    let line = stdout(&o);
+    assert_eq!(o.status.code(), Some(3), "{line}{}", stderr(&o));
+    assert!(
+        line.contains("; checked: ") && line.contains(" violation"),
+        "{line}"
+    );
+    let report = json(out6.join("check.json"));
+    let eye_in_mandrel =
+        report["violations"].as_array().unwrap().iter().any(|v| {
+            v["kind"] == "collision" && v["links"] == serde_json::json!(["eye", "mandrel"])
+        });
+    assert!(eye_in_mandrel, "{report}");
+    // Byte for byte what `formcam check --mandrel JOB` writes: exit 3 too.
+    let program = report["program"].as_str().unwrap();
+    let job = out6.parent().unwrap().join("job.toml");
+    let again = out6.parent().unwrap().join("again.json");
+    let o = formcam()
+        .args(["check", program, "--machine", &machine_of(&report)])
+        .args(["--mandrel", s(&job), "-o", s(&again)])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read_to_string(&again).unwrap(),
+        std::fs::read_to_string(out6.join("check.json")).unwrap()
     );
 }
 

@@ -5,10 +5,11 @@
 //! multi-layer job (and a `.wind` document) writes them per layer.
 //!
 //! A run that writes a program then checks it on its machine as `formcam
-//! check` would, from the written text (the program read back, each block
-//! timed by its own feed): `check.json` is the report, the line says
-//! `checked: clean` or the violations, and [`RunOutput::violations`] their
-//! count. [`ProgramCheck::Off`] skips it.
+//! check --mandrel JOB` would, from the written text (the program read
+//! back, each block timed by its own feed), with the job's mandrel, laminate
+//! and free fibre taken from the planning already done: `check.json` is the
+//! report, the line says `checked: clean` or the violations, and
+//! [`RunOutput::violations`] their count. [`ProgramCheck::Off`] skips it.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -22,6 +23,7 @@ use formcam_program::{
     WoundProgram, nc, plan_each, plan_until_with, write_program,
 };
 use formcam_progress::{Phase, Progress, Silent, Step};
+use formcam_sim::MandrelCheckBuilder;
 use formcam_winding::Layer;
 use formcam_winding::eye::EyeTrajectory;
 use serde_json::{Map, Value, json};
@@ -194,21 +196,40 @@ fn run(
     progress: &dyn Progress,
 ) -> Result<RunOutput, RunError> {
     let at = |e: ProgramError| RunError::wind(path, e);
+    // The check's free fibre takes each layer's circuit as it is planned
+    // (a user template's program is not read back).
+    let mut mandrel = match (check, stage, job.post()) {
+        (ProgramCheck::On, Stage::Program, Post::Dialect(_)) => {
+            Some(MandrelCheckBuilder::new(job).map_err(|e| check_error(path, e))?)
+        }
+        _ => None,
+    };
     // A multi-layer job's layer files are made as each layer is planned,
     // which then drops its per-point data.
     let mut each = LayerFiles::default();
     let wound = if job.is_layered() {
         let m = job.machine.as_ref().map(|jm| &jm.machine);
-        plan_each(job, stage, progress, &mut |i, l| match m {
-            Some(m) => each.add(m, i, l).map_err(Halt::Run),
-            None => Ok(()),
+        plan_each(job, stage, progress, &mut |i, l| {
+            if let Some(b) = &mut mandrel {
+                b.add(l).map_err(|e| Halt::Run(check_error(path, e)))?;
+            }
+            match m {
+                Some(m) => each.add(m, i, l).map_err(Halt::Run),
+                None => Ok(()),
+            }
         })
         .map_err(|h| match h {
             Halt::Program(e) => at(e),
             Halt::Run(e) => e,
         })?
     } else {
-        plan_until_with(job, stage, progress).map_err(at)?
+        let wound = plan_until_with(job, stage, progress).map_err(at)?;
+        if let Some(b) = &mut mandrel {
+            for l in &wound.layers {
+                b.add(l).map_err(|e| check_error(path, e))?;
+            }
+        }
+        wound
     };
     let program = match &wound.program {
         Some(p) => {
@@ -220,8 +241,8 @@ fn run(
         }
         None => None,
     };
-    let checked = match (&program, check) {
-        (Some((_, text)), ProgramCheck::On) => check_program(path, out, job, &wound, text)?,
+    let checked = match (&program, mandrel) {
+        (Some((_, text)), Some(mandrel)) => check_program(path, out, job, &wound, text, mandrel)?,
         _ => None,
     };
     progress.checkpoint(Step::new(Phase::Files, 0, 1))?;
@@ -301,36 +322,61 @@ impl Checked {
 }
 
 /// Checks the program `text` written for `job` (the job file at `path`) on
-/// its machine, as `formcam check OUT/program.<ext> --machine M` does: read
-/// back in the dialect of its extension, each block timed by its own feed,
-/// every axis's position, velocity, jump and acceleration limits. `None`
-/// for a user template's program (no reader knows its text).
+/// its machine, as `formcam check OUT/program.<ext> --machine M --mandrel
+/// JOB` does: read back in the dialect of its extension, each block timed
+/// by its own feed, every axis's position, velocity, jump and acceleration
+/// limits, the collisions of the machine's solids (mesh files relative to
+/// the machine file), the bed and the mandrel grown by the laminate, and
+/// the free fibre (`mandrel`: the job's laminate and fibre, from this
+/// planning). `None` for a user template's program (no reader knows its
+/// text).
 fn check_program(
     path: &Path,
     out: &Path,
     job: &WindJob,
     wound: &WoundProgram,
     text: &[u8],
+    mandrel: MandrelCheckBuilder,
 ) -> Result<Option<Checked>, RunError> {
     let (Some(m), Some(jm), Post::Dialect(_)) = (&wound.machine, &job.machine, &wound.post) else {
         return Ok(None);
     };
     let t = Instant::now();
     let program = out.join(format!("program.{}", wound.post.extension()));
-    let machine = match &jm.source {
-        MachineSource::Shipped(n) => n.clone(),
-        MachineSource::File(f) => job.base_dir.join(f).display().to_string(),
+    let (machine, mesh_dir) = match &jm.source {
+        MachineSource::Shipped(n) => (n.clone(), None),
+        MachineSource::File(f) => {
+            let file = job.base_dir.join(f);
+            (
+                file.display().to_string(),
+                file.parent().map(Path::to_path_buf),
+            )
+        }
     };
-    let fail = |source: formcam_sim::SimError| RunError::Check {
-        path: path.to_path_buf(),
-        source: Box::new(source),
-    };
+    let fail = |source| check_error(path, source);
+    let mandrel = mandrel.finish(job, wound, path).map_err(fail)?;
     let text = String::from_utf8_lossy(text);
-    let report = formcam_sim::check_text(&program, &text, m, &machine).map_err(fail)?;
+    let report = formcam_sim::check_text_with(
+        &program,
+        &text,
+        m,
+        &machine,
+        mesh_dir.as_deref(),
+        Some(&mandrel),
+    )
+    .map_err(fail)?;
     Ok(Some(Checked {
         report,
         time: t.elapsed(),
     }))
+}
+
+/// The check of the program written for the job file `path` failed.
+fn check_error(path: &Path, source: formcam_sim::SimError) -> RunError {
+    RunError::Check {
+        path: path.to_path_buf(),
+        source: Box::new(source),
+    }
 }
 
 /// A single-layer job: the layer's outputs are the job's.

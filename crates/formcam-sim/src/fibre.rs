@@ -16,7 +16,7 @@ use std::path::Path;
 
 use formcam_geom::Meridian;
 use formcam_machine::{Fk, JointKind, Machine, MachineKind};
-use formcam_program::{LayerBody, Stage, WindJob, WoundProgram, plan_until};
+use formcam_program::{LayerBody, Stage, WindJob, WoundLayer, WoundProgram, plan_until};
 use formcam_winding::job::Mandrel;
 use nalgebra::{Isometry3, Point3};
 
@@ -136,11 +136,21 @@ pub struct FibreTrack {
 
 impl FreeFibre {
     /// The fibre of a job planned to its program ([`Stage::Program`]) on a
-    /// winder.
+    /// winder, every layer kept whole.
     pub fn from_wound(wound: &WoundProgram) -> Result<Self, SimError> {
         let machine = wound.machine.clone().ok_or_else(|| SimError::Fibre {
             what: "the job names no machine".into(),
         })?;
+        let mut fibre = Self::new(machine)?;
+        for l in &wound.layers {
+            fibre.add(l)?;
+        }
+        Ok(fibre)
+    }
+
+    /// A fibre on the winder `machine` with no layer yet ([`FreeFibre::add`]
+    /// takes them in winding order).
+    pub fn new(machine: Machine) -> Result<Self, SimError> {
         if machine.roles.kind != MachineKind::Winder {
             return Err(SimError::Fibre {
                 what: format!(
@@ -152,6 +162,20 @@ impl FreeFibre {
         let spindle = machine.roles.spindle.ok_or_else(|| SimError::Fibre {
             what: format!("{} has no spindle", machine.name),
         })?;
+        Ok(Self {
+            machine,
+            spindle,
+            layers: Vec::new(),
+        })
+    }
+
+    /// The next layer of the program, planned to its program on this
+    /// fibre's machine: its first circuit's rows (a skip layer adds none).
+    pub fn add(&mut self, l: &WoundLayer) -> Result<(), SimError> {
+        let LayerBody::Wind(w) = &l.body else {
+            return Ok(());
+        };
+        let (machine, spindle) = (&self.machine, self.spindle);
         let nc = |a: usize, v: f64| {
             if machine.axes[a].kind == JointKind::Revolute {
                 v.to_degrees()
@@ -159,52 +183,42 @@ impl FreeFibre {
                 v
             }
         };
-        let mut layers = Vec::new();
-        for l in &wound.layers {
-            let LayerBody::Wind(w) = &l.body else {
-                continue;
-            };
-            let Some(track) = &w.track else {
-                return Err(SimError::Fibre {
-                    what: format!("{}: planned without the machine's axes", l.label),
-                });
-            };
-            let n = w.targets.len();
-            if n < 2 || track.values.len() != n * track.width {
-                return Err(SimError::Fibre {
-                    what: format!("{}: fewer than two planned points", l.label),
-                });
-            }
-            let spindle_deg: Vec<f64> = track.rows().map(|r| nc(spindle, r[spindle])).collect();
-            let start: Vec<f64> = track
-                .row(0)
-                .iter()
-                .enumerate()
-                .map(|(a, v)| nc(a, *v))
-                .collect();
-            let circuit_turn_deg = spindle_deg[n - 1] - spindle_deg[0];
-            if circuit_turn_deg == 0.0 {
-                return Err(SimError::Fibre {
-                    what: format!("{}: the spindle does not turn over a circuit", l.label),
-                });
-            }
-            layers.push(FibreLayer {
-                label: l.label.clone(),
-                mandrel: w.mandrel.clone(),
-                z_shift: w.z_shift,
-                spindle_deg,
-                contacts: w.targets.iter().map(|t| t.path_point).collect(),
-                eyes: w.targets.iter().map(|t| t.point).collect(),
-                start,
-                circuits: w.layer.pattern.circuits.max(1),
-                circuit_turn_deg,
+        let Some(track) = &w.track else {
+            return Err(SimError::Fibre {
+                what: format!("{}: planned without the machine's axes", l.label),
+            });
+        };
+        let n = w.targets.len();
+        if n < 2 || track.values.len() != n * track.width {
+            return Err(SimError::Fibre {
+                what: format!("{}: fewer than two planned points", l.label),
             });
         }
-        Ok(Self {
-            machine,
-            spindle,
-            layers,
-        })
+        let spindle_deg: Vec<f64> = track.rows().map(|r| nc(spindle, r[spindle])).collect();
+        let start: Vec<f64> = track
+            .row(0)
+            .iter()
+            .enumerate()
+            .map(|(a, v)| nc(a, *v))
+            .collect();
+        let circuit_turn_deg = spindle_deg[n - 1] - spindle_deg[0];
+        if circuit_turn_deg == 0.0 {
+            return Err(SimError::Fibre {
+                what: format!("{}: the spindle does not turn over a circuit", l.label),
+            });
+        }
+        self.layers.push(FibreLayer {
+            label: l.label.clone(),
+            mandrel: w.mandrel.clone(),
+            z_shift: w.z_shift,
+            spindle_deg,
+            contacts: w.targets.iter().map(|t| t.path_point).collect(),
+            eyes: w.targets.iter().map(|t| t.point).collect(),
+            start,
+            circuits: w.layer.pattern.circuits.max(1),
+            circuit_turn_deg,
+        });
+        Ok(())
     }
 
     /// The fibre of the winding job `job`, planned again (every layer, to its
@@ -221,20 +235,7 @@ impl FreeFibre {
     /// job writes no program (no machine or no eye: a mandrel and a path
     /// only), so that no program was written from it.
     pub fn from_job_file(path: &Path) -> Result<Option<Self>, SimError> {
-        let text = formcam_files::read_text(path)?;
-        let base = path.parent().unwrap_or(Path::new("."));
-        let wind = path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("wind"));
-        let job = if wind {
-            WindJob::from_wind(&text, formcam_program::EYE_CLEARANCE_MM, &[])
-        } else {
-            WindJob::from_toml(&text, base)
-        }
-        .map_err(|source| SimError::Job {
-            path: path.to_path_buf(),
-            source: Box::new(source),
-        })?;
+        let job = crate::read_job(path, None)?;
         if job.furthest_stage() != Stage::Program {
             return Ok(None);
         }

@@ -24,14 +24,19 @@
 //!   the mandrel recovered from the winding job planned again, by the
 //!   spindle's angle; [`check_snag`] — the fibre must not cut the mandrel
 //!   nor come near a machine solid ([`SnagOptions`]).
+//! * [`MandrelCheck`] — a winding job planned once: its [`Laminate`] and its
+//!   [`FreeFibre`], from a job file or from the planning `formcam wind` has
+//!   done ([`MandrelCheckBuilder`] as each layer is planned).
 //! * [`check_files`] — the whole pipeline of `formcam check`: a program file
-//!   and a machine (file or shipped name) to a [`Report`] and its one line.
+//!   and a machine (file or shipped name) to a [`Report`] and its one line;
+//!   [`check_text_with`] the same check of a program text in memory.
 
 mod collision;
 mod error;
 mod feed;
 mod fibre;
 mod limits;
+mod mandrel_check;
 mod pipeline;
 mod report;
 mod snag;
@@ -48,9 +53,10 @@ pub use limits::{
     AxisLimits, RELATIVE_TOLERANCE, RESOLUTION_DEG, RESOLUTION_MM, Violation, ViolationKind,
     check_timeline,
 };
+pub use mandrel_check::{MandrelCheck, MandrelCheckBuilder, read_job};
 pub use pipeline::{
-    CheckOptions, CheckRun, check_files, check_files_with, check_text, check_text_in, program_axes,
-    read_program,
+    CheckOptions, CheckRun, check_files, check_files_with, check_text, check_text_in,
+    check_text_with, program_axes, read_program,
 };
 pub use report::Report;
 pub use snag::{SnagOptions, check_snag, check_snag_exhaustive};

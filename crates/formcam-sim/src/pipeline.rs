@@ -6,8 +6,8 @@ use formcam_machine::{JointKind, Machine};
 use formcam_nc::{AxisSpec, Dialect, Program, read_cldata_lines, read_gcode_lines_in};
 
 use crate::{
-    AxisLimits, Collisions, FeedRule, FreeFibre, Laminate, Report, SimError, SnagOptions, Timeline,
-    check_snag, check_timeline,
+    AxisLimits, Collisions, FeedRule, FreeFibre, Laminate, MandrelCheck, Report, SimError,
+    SnagOptions, Timeline, check_snag, check_timeline,
 };
 
 /// The program axes of a machine, as formcam's programs for it name them:
@@ -93,7 +93,8 @@ pub fn check_text(
 
 /// [`check_text`] with the machine's mesh files relative to `mesh_dir`
 /// and, when given, the mandrel of a winding job's `laminate` checked
-/// against the machine's solids.
+/// against the machine's solids (no free fibre: [`check_text_with`] checks
+/// that too).
 pub fn check_text_in(
     program: &Path,
     text: &str,
@@ -101,6 +102,55 @@ pub fn check_text_in(
     machine_name: &str,
     mesh_dir: Option<&Path>,
     laminate: Option<&Laminate>,
+) -> Result<Report, SimError> {
+    check_read(
+        program,
+        text,
+        machine,
+        machine_name,
+        mesh_dir,
+        laminate,
+        None,
+    )
+}
+
+/// The whole check, as `formcam check --mandrel JOB` runs it: [`check_text`]
+/// with the machine's mesh files relative to `mesh_dir` and, when given, a
+/// winding job's `mandrel`: its laminate's solid against the machine's
+/// solids and its free fibre ([`check_snag`] with [`SnagOptions::default`])
+/// against the mandrel and the solids, the fibre on `machine` (which must
+/// have the axes, links and key points of the job's machine).
+pub fn check_text_with(
+    program: &Path,
+    text: &str,
+    machine: &Machine,
+    machine_name: &str,
+    mesh_dir: Option<&Path>,
+    mandrel: Option<&MandrelCheck>,
+) -> Result<Report, SimError> {
+    check_read(
+        program,
+        text,
+        machine,
+        machine_name,
+        mesh_dir,
+        mandrel.map(MandrelCheck::laminate),
+        mandrel.and_then(MandrelCheck::fibre),
+    )
+}
+
+/// The program read once, its timeline, then every check asked: the axes,
+/// the collisions (with the laminate's mandrel when given), the free fibre
+/// (when given, moved onto `machine`); the violations in the order they
+/// first happen.
+fn check_read(
+    program: &Path,
+    text: &str,
+    machine: &Machine,
+    machine_name: &str,
+    mesh_dir: Option<&Path>,
+    laminate: Option<&Laminate>,
+    fibre: Option<&FreeFibre>,
 ) -> Result<Report, SimError> {
     let (p, lines, dialect) = read_program(program, text, machine)?;
     let rule = FeedRule::of(dialect);
@@ -114,6 +164,10 @@ pub fn check_text_in(
         }
     };
     violations.extend(collisions.check(&tl, machine));
+    if let Some(f) = fibre {
+        let fibre = f.clone().with_machine(machine.clone())?;
+        violations.extend(check_snag(&tl, &fibre, &SnagOptions::default())?);
+    }
     violations.sort_by(|a, b| {
         a.time_s
             .total_cmp(&b.time_s)
@@ -136,10 +190,10 @@ pub fn check_text_in(
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct CheckOptions {
     /// The winding job (TOML or `.wind`) the program was written from
-    /// (`--mandrel JOB`): its mandrel, grown by its laminate layer by layer,
-    /// is checked against the machine's solids, and its free fibre
-    /// ([`check_snag`] with [`SnagOptions::default`]) against the mandrel
-    /// and the solids.
+    /// (`--mandrel JOB`), planned once into a [`MandrelCheck`]: its mandrel,
+    /// grown by its laminate layer by layer, is checked against the
+    /// machine's solids, and its free fibre ([`check_snag`] with
+    /// [`SnagOptions::default`]) against the mandrel and the solids.
     pub mandrel: Option<PathBuf>,
 }
 
@@ -173,36 +227,17 @@ pub fn check_files_with(
         path: machine.to_path_buf(),
         source,
     })?;
-    let laminate = match &options.mandrel {
+    // The winding job planned once: its laminate and its free fibre (none
+    // for a job that writes no program: the mandrel's solid alone).
+    let mandrel = match &options.mandrel {
         Some(job) => {
             inputs.push(job.clone());
-            Some(Laminate::from_job_file(job)?)
+            Some(MandrelCheck::from_job_file(job)?)
         }
         None => None,
     };
     let text = formcam_files::read_text(program)?;
-    let mut report = check_text_in(program, &text, &m, &name, mesh_dir, laminate.as_ref())?;
-    // The free fibre of a job that writes a program (a mandrel-only job
-    // gives the mandrel's solid alone).
-    let fibre = match &options.mandrel {
-        Some(job) => FreeFibre::from_job_file(job)?,
-        None => None,
-    };
-    if let Some(fibre) = fibre {
-        let fibre = fibre.with_machine(m)?;
-        let (p, lines, dialect) = read_program(program, &text, fibre.machine())?;
-        let tl = Timeline::new(&p, &lines, FeedRule::of(dialect), fibre.machine())?;
-        report
-            .violations
-            .extend(check_snag(&tl, &fibre, &SnagOptions::default())?);
-        report.violations.sort_by(|a, b| {
-            a.time_s
-                .total_cmp(&b.time_s)
-                .then(a.block.cmp(&b.block))
-                .then(a.kind.cmp(&b.kind))
-        });
-        report.clean = report.violations.is_empty();
-    }
+    let report = check_text_with(program, &text, &m, &name, mesh_dir, mandrel.as_ref())?;
     Ok(CheckRun {
         line: report.line(),
         report,

@@ -97,6 +97,8 @@ pub struct RunFolder {
     /// The machine file's folder (its meshes are named relative to it);
     /// none for a shipped machine.
     pub machine_dir: Option<PathBuf>,
+    /// The machine file it was read from (`None`: a shipped machine).
+    pub machine_file: Option<PathBuf>,
     /// The program file (`program.<ext>`), its text and dialect.
     pub program: Option<ProgramFile>,
     /// The path table (`path.csv`, or the first layer's), when written.
@@ -136,10 +138,14 @@ impl RunFolder {
                 path: root.to_path_buf(),
             });
         }
-        let (machine, machine_dir) = match machine {
-            Some(path) => (load_machine(path)?, path.parent().map(Path::to_path_buf)),
+        let (machine, machine_file) = match machine {
+            Some(path) => (load_machine(path)?, Some(path.to_path_buf())),
             None => summary_machine(&summary_path, &summary)?,
         };
+        let machine_dir = machine_file
+            .as_deref()
+            .and_then(Path::parent)
+            .map(Path::to_path_buf);
         let program = match summary.get("program_file").and_then(Value::as_str) {
             Some(name) => Some(read_program(root, &summary_path, name)?),
             None => None,
@@ -149,6 +155,7 @@ impl RunFolder {
             summary,
             machine,
             machine_dir,
+            machine_file,
             program,
             path_table: read_path_table(root)?,
         })
@@ -188,8 +195,7 @@ pub fn load_machine(path: &Path) -> Result<Machine, ViewError> {
 }
 
 /// The machine the summary names: `machine_shipped`, or `machine_file`
-/// relative to the folder of `job` (as the run was given it); the machine
-/// file's folder.
+/// relative to the folder of `job` (as the run was given it), and that file.
 fn summary_machine(
     path: &Path,
     summary: &Map<String, Value>,
@@ -226,8 +232,7 @@ fn summary_machine(
             job,
         });
     }
-    let dir = machine.parent().map(Path::to_path_buf);
-    Ok((load_machine(&machine)?, dir))
+    Ok((load_machine(&machine)?, Some(machine)))
 }
 
 fn read_program(root: &Path, summary: &Path, name: &str) -> Result<ProgramFile, ViewError> {

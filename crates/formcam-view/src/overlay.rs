@@ -5,10 +5,10 @@
 use std::path::Path;
 
 use serde::Serialize;
-use serde_json::{Map, Value};
 
 use crate::ViewError;
 use crate::band::Band;
+use crate::folder::RunFolder;
 use crate::scene::thin;
 use crate::timeline::{Sample, Timeline};
 use crate::violations::Violations;
@@ -76,24 +76,23 @@ pub struct Overlay {
 }
 
 impl Overlay {
-    /// The overlays of the result under `root` (`summary.json` read into
-    /// `summary`) playing `tl`.
-    /// `report`: the folder's `check.json` may be shown (the result is
-    /// shown on the machine it was checked on).
+    /// The overlays of the result under `root` (read as `folder`) playing
+    /// `tl`. `report`: the folder's `check.json` may be shown (the result
+    /// is shown on the machine it was checked on).
     ///
     /// # Errors
     ///
     /// A table or `check.json` that cannot be read, naming the file.
     pub fn open(
         root: &Path,
-        summary: &Map<String, Value>,
+        folder: &RunFolder,
         tl: &Timeline,
         report: bool,
     ) -> Result<Self, ViewError> {
         Ok(Self {
-            band: Band::read(root, summary, tl)?,
+            band: Band::read(root, &folder.summary, tl)?,
             eye: EyeTrajectory::of(tl),
-            violations: Violations::of(root, tl, report)?,
+            violations: Violations::of(folder, tl, report)?,
         })
     }
 

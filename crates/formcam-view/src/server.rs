@@ -102,12 +102,7 @@ impl View {
         };
         let overlay = match &timeline {
             // The folder's `check.json` holds for the machine it names only.
-            Some(tl) => Some(Overlay::open(
-                &real,
-                &folder.summary,
-                tl,
-                machine.is_none(),
-            )?),
+            Some(tl) => Some(Overlay::open(&real, &folder, tl, machine.is_none())?),
             None => None,
         };
         let plots = json(&WindingPlots::read(

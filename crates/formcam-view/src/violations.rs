@@ -1,16 +1,22 @@
 //! What the checks found in the result's program, for `/api/violations`:
-//! the report `formcam check` wrote (`check.json` in the folder), or the
-//! simulator's axis checks run on the timeline when the view opens. Each
-//! violation is passed on as the report writes it (a kind the view does not
-//! know is still listed), with the time spans of its first and worst block.
+//! the report `formcam check` wrote (`check.json` in the folder), or else
+//! formcam-sim's whole check run when the view opens
+//! ([`formcam_sim::check_text_with`], as `formcam wind` and `formcam check`
+//! run it): the axes, the collisions of the machine's solids and the bed,
+//! and, when the job that made the result is found (`summary.json`'s `job`),
+//! the mandrel grown by its laminate and the free fibre. `checks` names the
+//! checks the view ran and `unchecked` why one was left out. Each violation
+//! is passed on as the report writes it (a kind the view does not know is
+//! still listed), with the time spans of its first and worst block.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use formcam_sim::{AxisLimits, check_timeline};
+use formcam_sim::{AxisLimits, MandrelCheck, check_text_with, check_timeline};
 use serde::Serialize;
 use serde_json::Value;
 
 use crate::ViewError;
+use crate::folder::{ProgramFile, RunFolder};
 use crate::timeline::Timeline;
 
 /// `/api/violations`.
@@ -18,6 +24,15 @@ use crate::timeline::Timeline;
 pub struct Violations {
     /// `check.json` when read from the folder, else `check` (run by the view).
     pub source: &'static str,
+    /// The checks the view ran (`source` `check`): `axes` (position,
+    /// velocity, velocity jump, acceleration), `collisions` (the machine's
+    /// solids and the bed), `mandrel` (the job's mandrel grown by its
+    /// laminate, among the collisions) and `snag` (the free fibre); empty
+    /// for `check.json`, whose checks `formcam` chose when it wrote it.
+    pub checks: Vec<&'static str>,
+    /// Why a check was left out of the view's own (the job that made the
+    /// result not found, or a check that could not run), else `null`.
+    pub unchecked: Option<String>,
     /// Whether no check failed.
     pub clean: bool,
     /// Every violation as the report writes it (`kind`, `axis` or `links`,
@@ -42,27 +57,29 @@ pub struct AxisRange {
 }
 
 impl Violations {
-    /// The violations of `tl`'s program: `check.json` under `root` when
-    /// there is one and `report` (the result is shown on the machine it was
-    /// checked on), else the simulator's axis checks on `tl`.
+    /// The violations of `tl`, the program of `folder`: `check.json` in the
+    /// folder when there is one and `report` (the result is shown on the
+    /// machine it was checked on), else formcam-sim's check run now.
     ///
     /// # Errors
     ///
     /// `check.json` unreadable, no JSON object or without a `violations`
     /// list, naming the file.
-    pub fn of(root: &Path, tl: &Timeline, report: bool) -> Result<Self, ViewError> {
+    pub fn of(folder: &RunFolder, tl: &Timeline, report: bool) -> Result<Self, ViewError> {
         let limits = AxisLimits::of(tl.machine());
-        let path = root.join("check.json");
-        let (source, found) = if report && path.is_file() {
-            ("check.json", read_report(&path)?)
+        let path = folder.root.join("check.json");
+        let ran = if report && path.is_file() {
+            Ran {
+                source: "check.json",
+                found: read_report(&path)?,
+                checks: Vec::new(),
+                unchecked: None,
+            }
         } else {
-            let found = check_timeline(tl.sim(), &limits)
-                .iter()
-                .map(|v| serde_json::to_value(v).unwrap_or(Value::Null))
-                .collect();
-            ("check", found)
+            Ran::now(folder, tl)
         };
-        let violations: Vec<Value> = found
+        let violations: Vec<Value> = ran
+            .found
             .into_iter()
             .map(|mut v| {
                 let spans: Vec<[f64; 2]> = ["block", "worst_block"]
@@ -78,7 +95,9 @@ impl Violations {
             })
             .collect();
         Ok(Self {
-            source,
+            source: ran.source,
+            checks: ran.checks,
+            unchecked: ran.unchecked,
             clean: violations.is_empty(),
             violations,
             limits: limits
@@ -92,6 +111,99 @@ impl Violations {
                 .collect(),
         })
     }
+}
+
+/// The violations found, by which checks.
+struct Ran {
+    source: &'static str,
+    found: Vec<Value>,
+    checks: Vec<&'static str>,
+    unchecked: Option<String>,
+}
+
+impl Ran {
+    /// formcam-sim's check of the folder's program now: the whole check
+    /// with the job's mandrel and fibre when the job is found, else (or
+    /// when that fails) without them, else the axis checks alone.
+    fn now(folder: &RunFolder, tl: &Timeline) -> Self {
+        let mut unchecked = Vec::new();
+        if let Some(program) = &folder.program {
+            let mesh_dir = folder.machine_file.as_deref().and_then(Path::parent);
+            let check = |mandrel: Option<&MandrelCheck>| {
+                check_text_with(
+                    &program.path,
+                    &program.text,
+                    tl.machine(),
+                    "",
+                    mesh_dir,
+                    mandrel,
+                )
+            };
+            match job_check(folder, program) {
+                Ok(mandrel) => match check(Some(&mandrel)) {
+                    Ok(r) => {
+                        let mut checks = vec!["axes", "collisions", "mandrel"];
+                        if mandrel.fibre().is_some() {
+                            checks.push("snag");
+                        } else {
+                            unchecked.push("snag: the job has no free fibre".to_string());
+                        }
+                        return Self::found(&r.violations, checks, unchecked);
+                    }
+                    Err(e) => unchecked.push(format!("mandrel and snag: {e}")),
+                },
+                Err(why) => unchecked.push(format!("mandrel and snag: {why}")),
+            }
+            match check(None) {
+                Ok(r) => return Self::found(&r.violations, vec!["axes", "collisions"], unchecked),
+                Err(e) => unchecked.push(format!("collisions: {e}")),
+            }
+        }
+        let found = check_timeline(tl.sim(), &AxisLimits::of(tl.machine()));
+        Self::found(&found, vec!["axes"], unchecked)
+    }
+
+    /// The view's own check's violations.
+    fn found(
+        violations: &[formcam_sim::Violation],
+        checks: Vec<&'static str>,
+        unchecked: Vec<String>,
+    ) -> Self {
+        Self {
+            source: "check",
+            found: violations
+                .iter()
+                .map(|v| serde_json::to_value(v).unwrap_or(Value::Null))
+                .collect(),
+            checks,
+            unchecked: (!unchecked.is_empty()).then(|| unchecked.join("; ")),
+        }
+    }
+}
+
+/// The mandrel check of the job `summary.json` names (`job`, as the run
+/// was given it; a `.wind` document with the eye clearance the summary
+/// gives), planned now; why not, in words.
+fn job_check(folder: &RunFolder, program: &ProgramFile) -> Result<MandrelCheck, String> {
+    let job = folder
+        .summary
+        .get("job")
+        .and_then(Value::as_str)
+        .map(PathBuf::from)
+        .ok_or("summary.json names no job")?;
+    if !job.is_file() {
+        return Err(format!(
+            "the job that made {} ({}) is not found",
+            program.path.display(),
+            job.display()
+        ));
+    }
+    let clearance = folder
+        .summary
+        .get("eye_clearance_mm")
+        .and_then(Value::as_f64);
+    let wind = formcam_sim::read_job(&job, clearance).map_err(|e| e.to_string())?;
+    MandrelCheck::of_job(&wind, &job).map_err(|e| e.to_string())
 }
 
 /// The `violations` of a report `formcam check` wrote.

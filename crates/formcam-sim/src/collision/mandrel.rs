@@ -6,9 +6,7 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 use formcam_geom::Meridian;
-use formcam_program::{
-    EYE_CLEARANCE_MM, LayerBody, ProgramError, Stage, WindJob, WoundLayer, plan_each, plan_until,
-};
+use formcam_program::{LayerBody, ProgramError, Stage, WindJob, WoundLayer, plan_each, plan_until};
 use formcam_progress::Silent;
 use nalgebra::{Isometry3, Point3};
 use parry3d_f64::shape::SharedShape;
@@ -110,28 +108,8 @@ impl Laminate {
     /// document with formcam's eye clearance): the job read,
     /// its layers' paths planned (for their thickness), one solid per layer.
     pub fn from_job_file(path: &Path) -> Result<Self, SimError> {
-        let text = formcam_files::read_text(path)?;
-        let base = path.parent().unwrap_or(Path::new(""));
-        let job_error = |source| SimError::Job {
-            path: path.to_path_buf(),
-            source: Box::new(source),
-        };
-        let wind = path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("wind"));
-        let job = if wind {
-            WindJob::from_wind(&text, EYE_CLEARANCE_MM, &[])
-        } else {
-            WindJob::from_toml(&text, base)
-        }
-        .map_err(job_error)?;
-        Self::of_job(&job).map_err(|e| match e {
-            LaminateError::Program(p) => job_error(p),
-            LaminateError::Solid(layer) => SimError::MandrelSolid {
-                path: path.to_path_buf(),
-                layer,
-            },
-        })
+        let job = crate::read_job(path, None)?;
+        Self::of_job(&job).map_err(|e| e.at(path))
     }
 
     /// The laminate of `job`: a single-layer job's path planned (its
@@ -244,6 +222,22 @@ pub enum LaminateError {
     Program(formcam_program::ProgramError),
     /// The solid of a layer (1-based) could not be built.
     Solid(usize),
+}
+
+impl LaminateError {
+    /// The error of the job file `path`.
+    pub fn at(self, path: &Path) -> SimError {
+        match self {
+            Self::Program(p) => SimError::Job {
+                path: path.to_path_buf(),
+                source: Box::new(p),
+            },
+            Self::Solid(layer) => SimError::MandrelSolid {
+                path: path.to_path_buf(),
+                layer,
+            },
+        }
+    }
 }
 
 #[cfg(test)]

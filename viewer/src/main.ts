@@ -12,6 +12,7 @@ import { AxesPlot } from './plot';
 import { WindingPlots } from './plots';
 import { openDressing } from './dressing';
 import { openCorrection } from './correction';
+import { openPath } from './pathview';
 
 /** What `window.formcam.state()` returns: the state shown. */
 interface State {
@@ -92,11 +93,13 @@ async function main(): Promise<void> {
     api.json<Blocks>('/api/blocks'),
     api.text('/api/program'),
   ]);
-  // The overlays after the result: no more than six requests at once.
+  // The overlays after the result (no more than six requests at once),
+  // only those the result has: no request fails on a normal load.
+  const has = await api.json<{ violations: boolean; eye: boolean; band: boolean }>('/api/overlays');
   const [violations, eye, band] = await Promise.all([
-    api.optional<api.Violations>('/api/violations'),
-    api.optional<api.EyeTrajectory>('/api/eye'),
-    api.optional<api.Band>('/api/band'),
+    has.violations ? api.optional<api.Violations>('/api/violations') : null,
+    has.eye ? api.optional<api.EyeTrajectory>('/api/eye') : null,
+    has.band ? api.optional<api.Band>('/api/band') : null,
   ]);
   const job = cleanPath(String(result.job ?? ''));
   $('title').textContent = `formcam view: ${job.split('/').pop() ?? ''} on ${machine.name}`;
@@ -309,6 +312,7 @@ function clock(t: number): string {
 async function start(): Promise<void> {
   const { kind } = await api.json<{ kind: string }>('/api/kind');
   if (kind === 'winding') return main();
+  if (kind === 'path') return openPath(ready);
   $('app').hidden = true;
   const host = $('app2d');
   host.hidden = false;

@@ -7,7 +7,8 @@
 //! the result folder's files under `/files/` (plain paths only, nothing
 //! outside the folder) and the JSON the page draws under `/api/`
 //! (`result`, `timeline?samples=N`, `sample?t=T`, `blocks`, `machine`,
-//! `mandrel`, `program`, `violations`, `eye`, `band`). The page does no
+//! `mandrel`, `program`, `violations`, `eye`, `band`, `overlays`; `path`
+//! for a winding result without a program). The page does no
 //! kinematics: every pose it draws is one the server sent ([`Timeline`],
 //! the simulator's timeline of formcam-sim), and every violation one the
 //! checks found ([`Violations`]).
@@ -19,6 +20,7 @@ mod error;
 mod folder;
 mod overlay;
 mod page;
+mod pathview;
 mod plots;
 pub mod request;
 mod scene;
@@ -38,6 +40,7 @@ pub use error::ViewError;
 pub use folder::{ProgramFile, ResultKind, RunFolder, load_machine};
 pub use overlay::{EYE_POINTS, EyeTrajectory, Overlay, Shown};
 pub use page::Page;
+pub use pathview::{PathBand, PathBody, PathView};
 pub use plots::{AxisPlots, MeridianPlot, PullPlot, WindingPlots};
 pub use scene::{
     LinkScene, MERIDIAN_POINTS, MachineScene, MandrelScene, PATH_POINTS, Solid, SolidShape, thin,

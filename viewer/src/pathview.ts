@@ -78,6 +78,7 @@ export async function openPath(ready: Promise<void>): Promise<void> {
     circuitsShown = Math.min(Math.max(Math.round(c), 0), body.band.circuits);
     scene.showLaid(circuitsShown >= starts.length ? total : starts[circuitsShown]);
     $('path-circuits').textContent = `${circuitsShown} / ${body.band.circuits} circuits`;
+    ($('path-grow') as HTMLInputElement).value = String(circuitsShown);
     scene.dirty = true;
   };
 

@@ -561,7 +561,12 @@ fn the_browser_opens_a_winding_path_without_a_program() {
         return;
     }
     let out = scratch("browser-path").join("out");
-    wind_ok(&repo().join("examples/vessel-eye-pull-speed.toml"), &out);
+    let job = repo().join("examples/vessel-eye-pull-speed.toml");
+    let o = formcam()
+        .args(["wind", "eye", s(&job), "-o", s(&out)])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
     assert!(!out.join("blocks.csv").exists());
     let r = drive("path", &out);
     let (state, expected) = (&r["state"], &r["expected"]);

@@ -13,6 +13,7 @@ import { WindingPlots } from './plots';
 import { openDressing } from './dressing';
 import { openCorrection } from './correction';
 import { FrameClock } from './perf';
+import { openPath } from './pathview';
 
 /** What `window.formcam.state()` returns: the state shown. */
 interface State {
@@ -109,11 +110,13 @@ async function main(): Promise<void> {
     api.json<TimelineBody>(`/api/timeline?samples=${SAMPLES}`),
     api.text('/api/program'),
   ]);
-  // The overlays after the result: no more than six requests at once.
+  // The overlays after the result (no more than six requests at once),
+  // only those the result has: no request fails on a normal load.
+  const has = await api.json<{ violations: boolean; eye: boolean; band: boolean }>('/api/overlays');
   const [violations, eye, band] = await Promise.all([
-    api.optional<api.Violations>('/api/violations'),
-    api.optional<api.EyeTrajectory>('/api/eye'),
-    api.optional<api.Band>('/api/band'),
+    has.violations ? api.optional<api.Violations>('/api/violations') : null,
+    has.eye ? api.optional<api.EyeTrajectory>('/api/eye') : null,
+    has.band ? api.optional<api.Band>('/api/band') : null,
   ]);
   const job = cleanPath(String(result.job ?? ''));
   $('title').textContent = `${api.PAGE_NAME}: ${job.split('/').pop() ?? ''} on ${machine.name}`;
@@ -408,6 +411,7 @@ function clock(t: number): string {
 async function start(): Promise<void> {
   const { kind } = await api.json<{ kind: string }>('/api/kind');
   if (kind === 'winding') return main();
+  if (kind === 'path') return openPath(ready);
   $('app').hidden = true;
   const host = $('app2d');
   host.hidden = false;

@@ -7,6 +7,7 @@
 //
 //   node viewer/tests/results.mjs KIND URL SCREENSHOT_DIR OUT_JSON
 //   KIND: plots | dressing | correction | loop (a closed-loop simulation)
+//         | path (a winding result without a program)
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
@@ -14,7 +15,7 @@ import { canvases } from './canvas.mjs';
 
 const [kind, url, shots, out] = process.argv.slice(2);
 if (!kind || !url || !shots || !out) {
-  console.error('usage: node results.mjs plots|dressing|correction|loop URL SCREENSHOT_DIR OUT_JSON');
+  console.error('usage: node results.mjs plots|dressing|correction|loop|path URL SCREENSHOT_DIR OUT_JSON');
   process.exit(2);
 }
 mkdirSync(shots, { recursive: true });
@@ -96,6 +97,29 @@ try {
     await page.evaluate(() => { document.querySelector('#plots-panel').scrollTop = 1e6; });
     await frames(page);
     await page.screenshot({ path: join(shots, 'plots-axes.png') });
+  } else if (kind === 'path') {
+    step = 'path';
+    await frames(page);
+    report.scene = await canvases(page, '#stage > canvas');
+    await page.screenshot({ path: join(shots, 'path.png') });
+    // Half the circuits of the band, then the plots.
+    const circuits = await page.evaluate(() => window.formcam.state().circuits);
+    await page.evaluate((c) => window.formcam.grow(c), Math.floor(circuits / 2));
+    report.half = await page.evaluate(() => window.formcam.state());
+    report.half_scene = await canvases(page, '#stage > canvas');
+    await page.screenshot({ path: join(shots, 'path-half.png') });
+    await page.evaluate((c) => window.formcam.grow(c), circuits);
+    await page.click('#plots-toggle');
+    await page.evaluate(() => window.formcamPlots.open());
+    await frames(page);
+    report.state = await page.evaluate(() => window.formcam.state());
+    report.canvases = await canvases(page, '#plots-panel canvas');
+    await page.screenshot({ path: join(shots, 'path-plots.png') });
+    report.expected = await page.evaluate(async () => {
+      const b = await (await fetch('/api/path')).json();
+      const m = await (await fetch('/api/mandrel')).json();
+      return { band: b.band.points.length, circuits: b.band.circuits, eye: b.eye ? b.eye.length : 0, path: m.path.length };
+    });
   } else if (kind === 'dressing') {
     step = 'dressing';
     const duration = await page.evaluate(() => window.formcam.duration_s);

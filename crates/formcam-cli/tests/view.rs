@@ -755,4 +755,46 @@ fn the_browser_draws_the_machines_mesh_solids_and_names_a_missing_one() {
             "{miss}"
         );
     }
+
+#[test]
+fn the_browser_opens_a_winding_path_without_a_program() {
+    if !browser_present() {
+        return;
+    }
+    let out = scratch("browser-path").join("out");
+    let job = repo().join("examples/vessel-eye-pull-speed.toml");
+    let o = formcam()
+        .args(["wind", "eye", s(&job), "-o", s(&out)])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!out.join("blocks.csv").exists());
+    let r = drive("path", &out);
+    let (state, expected) = (&r["state"], &r["expected"]);
+    assert_eq!(state["kind"], "path", "{r:#}");
+    // The whole path, band and eye the server sent are drawn.
+    assert_eq!(state["path_points"], expected["path"], "{r:#}");
+    assert_eq!(state["band_points"], expected["band"], "{r:#}");
+    assert_eq!(state["band_total"], expected["band"], "{r:#}");
+    assert_eq!(state["eye_points"], expected["eye"], "{r:#}");
+    assert!(expected["eye"].as_u64().unwrap() > 0, "{r:#}");
+    // Half the circuits: fewer band points, another picture.
+    let half = &r["half"];
+    assert_eq!(
+        half["band_circuits"],
+        expected["circuits"].as_u64().unwrap() / 2
+    );
+    assert!(half["band_points"].as_u64() < expected["band"].as_u64());
+    let (scene, half_scene) = (&r["scene"][0], &r["half_scene"][0]);
+    assert!(
+        scene["colours"].as_u64().unwrap() > 8,
+        "a flat picture: {r:#}"
+    );
+    assert_ne!(scene["hash"], half_scene["hash"], "{r:#}");
+    // Winding angle, thickness, pull speed; no axes without a program.
+    let canvases = r["canvases"].as_array().unwrap();
+    assert_eq!(canvases.len(), 3, "{r:#}");
+    assert!(canvases.iter().all(drawn), "a flat plot: {r:#}");
+    let plots = state["plots"].as_object().unwrap();
+    assert_eq!(plots.len(), 3, "{r:#}");
 }

@@ -13,7 +13,7 @@ use crate::ViewError;
 /// writes `report.json` naming its measurements (a closed-loop simulation,
 /// one listing its `rounds`) and no `summary.json`; a dressing's
 /// `summary.json` has `dressing_time_s`; any other `summary.json` is a
-/// winding result's.
+/// winding result's, a [`ResultKind::Path`] one without `program_file`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ResultKind {
@@ -24,6 +24,9 @@ pub enum ResultKind {
     /// `formcam correct`: the measurements' deviations, the report; or
     /// `formcam correct simulate`: those of every round.
     Correction,
+    /// A winding result without a program (its summary names no
+    /// `program_file`): the path, its tables and plots.
+    Path,
 }
 
 impl ResultKind {
@@ -45,8 +48,10 @@ impl ResultKind {
             let s = read_summary(&summary)?;
             return Ok(if s.contains_key("dressing_time_s") {
                 Self::Dressing
-            } else {
+            } else if s.contains_key("program_file") {
                 Self::Winding
+            } else {
+                Self::Path
             });
         }
         let report = root.join("report.json");
@@ -196,7 +201,7 @@ pub fn load_machine(path: &Path) -> Result<Machine, ViewError> {
 
 /// The machine the summary names: `machine_shipped`, or `machine_file`
 /// relative to the folder of `job` (as the run was given it), and that file.
-fn summary_machine(
+pub(crate) fn summary_machine(
     path: &Path,
     summary: &Map<String, Value>,
 ) -> Result<(Machine, Option<PathBuf>), ViewError> {
@@ -255,7 +260,7 @@ fn read_program(root: &Path, summary: &Path, name: &str) -> Result<ProgramFile, 
 }
 
 /// `path.csv`, or that of the first layer (`layer-01/path.csv`).
-fn read_path_table(root: &Path) -> Result<Option<(PathBuf, String)>, ViewError> {
+pub(crate) fn read_path_table(root: &Path) -> Result<Option<(PathBuf, String)>, ViewError> {
     for path in [
         root.join("path.csv"),
         root.join("layer-01").join("path.csv"),

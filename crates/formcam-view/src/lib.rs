@@ -7,7 +7,8 @@
 //! the result folder's files under `/files/` (plain paths only, nothing
 //! outside the folder) and the JSON the page draws under `/api/`
 //! (`result`, `timeline?samples=N`, `sample?t=T`, `blocks`, `machine`,
-//! `mandrel`, `mesh/N`, `program`, `violations`, `eye`, `band`). The page does no
+//! `mandrel`, `mesh/N`, `program`, `violations`, `eye`, `band`, `overlays`; `path`
+//! for a winding result without a program). The page does no
 //! kinematics: every pose it draws is one the server sent ([`Timeline`],
 //! the simulator's timeline of formcam-sim), and every violation one the
 //! checks found ([`Violations`]).
@@ -20,6 +21,7 @@ mod folder;
 mod mesh;
 mod overlay;
 mod page;
+mod pathview;
 mod plots;
 mod report;
 pub mod request;
@@ -41,6 +43,7 @@ pub use folder::{ProgramFile, ResultKind, RunFolder, load_machine};
 pub use mesh::{DrawnMesh, MESH_TRIANGLES};
 pub use overlay::{EYE_POINTS, EyeTrajectory, Overlay, Shown};
 pub use page::Page;
+pub use pathview::{PathBand, PathBody, PathView};
 pub use plots::{AxisPlots, MeridianPlot, PullPlot, WindingPlots};
 pub use report::{
     KNOT_TOLERANCE_MM, KNOT_TOLERANCE_RAD, MAX_KNOT_VALUES, Report, TIMELINE_HEAD, report,

@@ -21,10 +21,11 @@ use serde::Serialize;
 use crate::ViewError;
 use crate::correction::CorrectionBody;
 use crate::dressing::DressingView;
-use crate::folder::{ResultKind, RunFolder, read_summary};
+use crate::folder::{ResultKind, RunFolder, read_path_table, read_summary, read_text};
 use crate::mesh::DrawnMesh;
 use crate::overlay::{Overlay, Shown};
 use crate::page::Page;
+use crate::pathview::PathView;
 use crate::plots::WindingPlots;
 use crate::request::{MAX_HEADER_BYTES, MAX_URL_BYTES, Refusal, Target, file_under};
 use crate::scene::{MachineScene, MandrelScene};
@@ -65,6 +66,8 @@ pub struct View {
     dressing: Option<(DressingView, Vec<u8>)>,
     /// A correction result (`/api/correction`).
     correction: Option<Vec<u8>>,
+    /// A winding result without a program (`/api/path`).
+    path: Option<Vec<u8>>,
 }
 
 impl View {
@@ -75,6 +78,9 @@ impl View {
     /// [`ViewError`] naming the file and the field.
     pub fn open(root: &Path, machine: Option<&Path>, page: Page) -> Result<Self, ViewError> {
         let kind = ResultKind::of(root)?;
+        if kind == ResultKind::Path {
+            return Self::open_path(root, machine, page);
+        }
         if kind != ResultKind::Winding {
             return Self::open_2d(root, kind, page);
         }
@@ -114,6 +120,7 @@ impl View {
             plots: Some(plots),
             dressing: None,
             correction: None,
+            path: None,
             root: real,
             summary: json(&folder.summary),
             machine: json(&scene),
@@ -156,6 +163,43 @@ impl View {
             plots: None,
             dressing,
             correction,
+            path: None,
+        })
+    }
+
+    /// A winding result without a program: the mandrel with its path (the
+    /// folder's path table), the band and eye of `/api/path`, the machine
+    /// the result names (if any) and the winding plots, no timeline.
+    fn open_path(root: &Path, machine: Option<&Path>, page: Page) -> Result<Self, ViewError> {
+        let real = root.canonicalize().map_err(|_| ViewError::NoFolder {
+            path: root.to_path_buf(),
+        })?;
+        let summary = read_summary(&root.join("summary.json"))?;
+        // Without a path table: the error of reading `path.csv`.
+        let table = match read_path_table(root)? {
+            Some(t) => t,
+            None => {
+                let p = root.join("path.csv");
+                let text = read_text(&p)?;
+                (p, text)
+            }
+        };
+        let view = PathView::read(root, &summary, machine, (&table.0, &table.1))?;
+        let mandrel = MandrelScene::from_path_table(view.scene.mandrel, &table.1, &table.0)?;
+        Ok(Self {
+            root: real,
+            summary: json(&summary),
+            machine: json(&view.scene),
+            mandrel: Some(json(&mandrel)),
+            program: None,
+            timeline: None,
+            overlay: None,
+            page,
+            kind: ResultKind::Path,
+            plots: Some(json(&WindingPlots::read(root, None)?)),
+            dressing: None,
+            correction: None,
+            path: Some(json(&view.body)),
         })
     }
 
@@ -195,7 +239,24 @@ impl View {
             [
                 "api",
                 "machine" | "mandrel" | "program" | "timeline" | "sample" | "blocks",
-            ] if self.kind != ResultKind::Winding => Err(Refusal::NotFound),
+            ] if matches!(self.kind, ResultKind::Dressing | ResultKind::Correction) => {
+                Err(Refusal::NotFound)
+            }
+            ["api", "path"] => self
+                .path
+                .clone()
+                .map(|b| (JSON, b))
+                .ok_or(Refusal::NotFound),
+            // Which of `violations`, `eye` and `band` the result has: the
+            // page asks only for those.
+            ["api", "overlays"] => Ok((
+                JSON,
+                json(&serde_json::json!({
+                    "violations": self.overlay.is_some(),
+                    "eye": self.overlay.is_some(),
+                    "band": self.overlay.as_ref().is_some_and(|o| o.band.is_some()),
+                })),
+            )),
             ["api", "plots"] => self
                 .plots
                 .clone()

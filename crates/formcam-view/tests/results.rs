@@ -332,12 +332,80 @@ fn a_folder_without_summary_or_correction_report_is_no_result() {
 }
 
 #[test]
-fn a_winding_result_without_a_program_says_what_would_open() {
+fn a_winding_result_without_a_program_opens_as_its_path() {
     let dir = result("tube-helical.toml");
-    assert!(dir.join("summary.json").is_file());
-    let e = View::open(&dir, None, Page::default())
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("a winding result without a program"), "{e}");
-    assert!(e.contains("dressing or a correction result"), "{e}");
+    assert!(!dir.join("program.gcode").exists());
+    let view = View::open(&dir, None, Page::default()).unwrap();
+    assert_eq!(view.kind(), ResultKind::Path);
+    assert_eq!(get(&view, "/api/kind")["kind"], "path");
+    let summary = get(&view, "/api/result");
+    let circuits = summary["circuits"].as_u64().unwrap() as usize;
+    let rows = rows(&dir.join("path.csv"));
+    // No machine: one bare link carries the mandrel.
+    let machine = get(&view, "/api/machine");
+    assert_eq!(machine["links"].as_array().unwrap().len(), 1);
+    assert_eq!(machine["mandrel"], 0);
+    let mandrel = get(&view, "/api/mandrel");
+    assert_eq!(mandrel["path_points"], rows);
+    let body = get(&view, "/api/path");
+    assert_eq!(body["pose"], "none");
+    assert!(body["eye"].is_null());
+    let band = &body["band"];
+    assert_eq!(band["circuits"], circuits);
+    assert_eq!(band["table_points"], rows);
+    let layers = numbers(&band["layers"]);
+    let points = band["points"].as_array().unwrap();
+    assert_eq!(layers.len(), circuits);
+    assert!(points.len() <= formcam_view::BAND_POINTS);
+    // Each circuit is the first turned by its share of a turn, on the
+    // radius of the path.
+    let per = points.len() / circuits;
+    assert_eq!(per * circuits, points.len());
+    let (p0, pk) = (numbers(&points[1]), numbers(&points[per + 1]));
+    let turn = std::f64::consts::TAU / circuits as f64;
+    let (r0, rk) = (p0[0].hypot(p0[1]), pk[0].hypot(pk[1]));
+    assert!((r0 - rk).abs() < 1e-9 && (p0[2] - pk[2]).abs() < 1e-9);
+    let d = (pk[1].atan2(pk[0]) - p0[1].atan2(p0[0]) - turn).rem_euclid(std::f64::consts::TAU);
+    assert!(d.min(std::f64::consts::TAU - d) < 1e-9, "{d}");
+    let plots = get(&view, "/api/plots");
+    assert_eq!(plots["meridian"][0]["z"].as_array().unwrap().len(), rows);
+    assert!(plots["axes"].is_null());
+    let none = get(&view, "/api/overlays");
+    assert_eq!(
+        (none["violations"].as_bool(), none["band"].as_bool()),
+        (Some(false), Some(false))
+    );
+    for url in [
+        "/api/program",
+        "/api/timeline",
+        "/api/sample?t=0",
+        "/api/blocks",
+        "/api/band",
+        "/api/eye",
+    ] {
+        assert_eq!(view.answer(url).0, 404, "{url}");
+    }
+}
+
+#[test]
+fn a_path_with_an_eye_and_a_machine_shows_both() {
+    let dir = result("vessel-axes-4axis.toml");
+    let view = View::open(&dir, None, Page::default()).unwrap();
+    assert_eq!(view.kind(), ResultKind::Path);
+    let machine = get(&view, "/api/machine");
+    let links = machine["links"].as_array().unwrap().len();
+    assert!(links > 1, "{machine}");
+    let body = get(&view, "/api/path");
+    assert_eq!(body["pose"], "axes.csv row 1");
+    assert_eq!(body["poses"].as_array().unwrap().len(), links);
+    assert_eq!(body["band"]["link"], machine["mandrel"]);
+    assert_eq!(
+        body["eye"].as_array().unwrap().len(),
+        rows(&dir.join("eye.csv"))
+    );
+    let plots = get(&view, "/api/plots");
+    assert_eq!(
+        plots["pull"][0]["u"].as_array().unwrap().len(),
+        rows(&dir.join("eye.csv"))
+    );
 }

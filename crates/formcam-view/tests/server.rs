@@ -508,6 +508,13 @@ fn the_band_is_laid_circuit_by_circuit_as_the_spindle_turns() {
     let plain = start(&folder("band-none"));
     assert_eq!(get(&plain, "/api/band").0, 404);
     assert!(plain.json("/api/sample?t=1").get("laid").is_none());
+    // `/api/overlays` says which overlays exist: the page asks only for those.
+    let has = |s: &Probe| {
+        let o = s.json("/api/overlays");
+        [&o["violations"], &o["eye"], &o["band"]].map(|v| v.as_bool().unwrap())
+    };
+    assert_eq!(has(&server), [true, true, true]);
+    assert_eq!(has(&plain), [true, true, false]);
 }
 
 /// One answer read from a kept connection: status and body (by its

@@ -755,6 +755,7 @@ fn the_browser_draws_the_machines_mesh_solids_and_names_a_missing_one() {
             "{miss}"
         );
     }
+}
 
 #[test]
 fn the_browser_opens_a_winding_path_without_a_program() {

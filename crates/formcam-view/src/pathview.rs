@@ -17,6 +17,7 @@ use serde_json::{Map, Value};
 use crate::ViewError;
 use crate::band::BAND_POINTS;
 use crate::folder::{load_machine, summary_machine};
+use crate::mesh::DrawnMesh;
 use crate::scene::{LinkScene, MachineScene, thin};
 use crate::table::Table;
 
@@ -60,6 +61,8 @@ pub struct PathView {
     pub scene: MachineScene,
     /// `/api/path`.
     pub body: PathBody,
+    /// The machine's meshes drawn (`/api/mesh/N`).
+    pub meshes: Vec<DrawnMesh>,
 }
 
 impl PathView {
@@ -76,21 +79,29 @@ impl PathView {
         machine: Option<&Path>,
         pass: (&Path, &str),
     ) -> Result<Self, ViewError> {
-        let machine = match machine {
-            Some(p) => Some(load_machine(p)?),
+        let (machine, file) = match machine {
+            Some(p) => (Some(load_machine(p)?), Some(p.to_path_buf())),
             None if summary.contains_key("machine_shipped")
                 || summary.contains_key("machine_file") =>
             {
-                Some(summary_machine(&root.join("summary.json"), summary)?.0)
+                let (m, file) = summary_machine(&root.join("summary.json"), summary)?;
+                (Some(m), file)
             }
-            None => None,
+            None => (None, None),
         };
-        let (scene, world, pose) = match &machine {
+        let mesh_dir = file.as_deref().and_then(Path::parent);
+        let (scene, meshes, world, pose) = match &machine {
             Some(m) => {
                 let (q, pose) = first_row(root, m)?;
-                (MachineScene::of(m), m.poses(&q), pose)
+                let (scene, meshes) = MachineScene::read(m, mesh_dir);
+                (scene, meshes, m.poses(&q), pose)
             }
-            None => (bare(), vec![Isometry3::identity()], "none".into()),
+            None => (
+                bare(),
+                Vec::new(),
+                vec![Isometry3::identity()],
+                "none".into(),
+            ),
         };
         let link = scene.mandrel;
         let mandrel_pose = world.get(link).copied().unwrap_or_else(Isometry3::identity);
@@ -109,6 +120,7 @@ impl PathView {
                 band,
                 eye,
             },
+            meshes,
         })
     }
 }

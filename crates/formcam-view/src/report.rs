@@ -74,7 +74,7 @@ pub fn report(
     guard_output(root, out)?;
     let view = View::open(root, machine, Page::none())?;
     let kind = view.kind();
-    let mut entries: Vec<Entry> = urls(kind)
+    let mut entries: Vec<Entry> = urls(kind, view.mesh_count())
         .iter()
         .map(|url| Entry::answer(&view, url))
         .collect();
@@ -110,15 +110,22 @@ pub const TIMELINE_HEAD: usize = 2;
 const SAMPLE_TABLES: &str = "report:samples";
 
 /// The URLs the page asks for, per kind of result.
-fn urls(kind: ResultKind) -> Vec<String> {
+fn urls(kind: ResultKind, meshes: usize) -> Vec<String> {
     let mut u = vec!["/api/kind".to_owned(), "/api/result".to_owned()];
+    u.extend((0..meshes).map(|n| format!("/api/mesh/{n}")));
     match kind {
+        ResultKind::Path => {
+            for r in ["machine", "mandrel", "path", "plots"] {
+                u.push(format!("/api/{r}"));
+            }
+        }
         ResultKind::Winding => {
             for r in [
                 "machine",
                 "mandrel",
                 "blocks",
                 "program",
+                "overlays",
                 "violations",
                 "eye",
                 "band",

@@ -190,6 +190,7 @@ impl View {
             root: real,
             summary: json(&summary),
             machine: json(&view.scene),
+            meshes: view.meshes.iter().map(DrawnMesh::to_bytes).collect(),
             mandrel: Some(json(&mandrel)),
             program: None,
             timeline: None,
@@ -211,6 +212,11 @@ impl View {
     /// The timeline of the result's program, if it has one.
     pub fn timeline(&self) -> Option<&Timeline> {
         self.timeline.as_ref()
+    }
+
+    /// How many meshes `/api/mesh/N` serves (N from 0).
+    pub(crate) fn mesh_count(&self) -> usize {
+        self.meshes.len()
     }
 
     /// The band's laying table (see [`crate::Band::laid`]), with a band.

@@ -42,5 +42,6 @@ fn kind_name(kind: formcam_view::ResultKind) -> &'static str {
         formcam_view::ResultKind::Winding => "winding",
         formcam_view::ResultKind::Dressing => "dressing",
         formcam_view::ResultKind::Correction => "correction",
+        formcam_view::ResultKind::Path => "winding path",
     }
 }

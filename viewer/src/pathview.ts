@@ -57,7 +57,7 @@ export async function openPath(ready: Promise<void>): Promise<void> {
   $('app').classList.add('path-only');
   const job = String(result.job ?? '').split(/[\\/]/).pop() ?? '';
   const on = body.pose === 'none' ? 'no machine' : `${machine.name} at ${body.pose}`;
-  $('title').textContent = `formcam view: ${job} (path, no program), ${on}`;
+  $('title').textContent = `${api.PAGE_NAME}: ${job} (path, no program), ${on}`;
   $('status').textContent = `path ${mandrel?.path_points ?? 0} points, ${body.band.circuits} circuits` +
     (body.eye ? `, eye ${body.eye.length} points` : '') +
     (body.pose === 'none' ? '' : '; machine shown still, not animated');

@@ -4,15 +4,15 @@
 #![allow(missing_docs, clippy::unwrap_used)]
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use std::path::Path;
 
 use formcam_machine::shipped::shipped;
 use formcam_nc::{Block, Feed, Program};
-use formcam_program::{Stage, WindJob, plan_until, write_program};
-use formcam_sim::{
-    AxisLimits, Collisions, FeedRule, Laminate, Timeline, check_timeline, program_axes,
-    read_program,
-};
+use formcam_sim::{AxisLimits, FeedRule, Timeline, check_timeline, program_axes};
+
+// Each target uses part of the shared cases.
+#[allow(dead_code)]
+#[path = "support/cases.rs"]
+mod cases;
 
 fn bench(c: &mut Criterion) {
     let m = shipped("winder-4axis").unwrap().machine().unwrap();
@@ -37,34 +37,13 @@ fn bench(c: &mut Criterion) {
             check_timeline(&tl, &limits)
         });
     });
-    // The demo's 840D vessel program (its eye passes over the domes inside
-    // the mandrel's box, so the exact distance runs there), repeated to 10^5
-    // blocks, the spindle carried on; its mandrel from the job.
-    let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
-    let job_path = examples.join("vessel-program-840d.toml");
-    let job = WindJob::from_toml(&std::fs::read_to_string(&job_path).unwrap(), &examples).unwrap();
-    let m = job.machine.as_ref().unwrap().machine.clone();
-    let planned = plan_until(&job, Stage::Program).unwrap();
-    let mut text = Vec::new();
-    write_program(&planned, &mut text).unwrap();
-    let text = String::from_utf8(text).unwrap();
-    let (one, _, _) = read_program(Path::new("program.mpf"), &text, &m).unwrap();
-    let spindle = m.axis("A").unwrap();
-    let turn = one.blocks.last().unwrap().target[spindle];
-    let mut p = Program::new("VESSEL", program_axes(&m));
-    let mut copy = 0.0;
-    while p.blocks.len() < n {
-        for b in one.blocks.iter().take(n - p.blocks.len()) {
-            let mut b = b.clone();
-            b.target[spindle] += copy * turn;
-            p.blocks.push(b);
-        }
-        copy += 1.0;
-    }
-    let laminate = Laminate::of_job(&job).unwrap();
-    let stages = laminate.stage_of_blocks(p.blocks.iter().map(|b| b.comment.as_deref()));
-    let collisions = Collisions::with_mandrel(&m, None, &laminate, stages).unwrap();
-    let tl = Timeline::new(&p, &lines, FeedRule::Sinumerik840d, &m).unwrap();
+    let cases::VesselCase {
+        machine: m,
+        program: p,
+        lines,
+        timeline: tl,
+        collisions,
+    } = cases::vessel(n);
     let found = collisions.check(&tl, &m);
     // The demo's one finding: the cross feed's bar near the spindle chuck.
     assert!(

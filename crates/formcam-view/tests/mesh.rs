@@ -100,7 +100,19 @@ fn result_with_machine(name: &str, machine_name: &str, machine_text: &str) -> Pa
         "machine_file": format!("machine/{machine_name}"),
     });
     std::fs::write(out.join("summary.json"), summary.to_string()).unwrap();
+    write_pass(&out);
     out
+}
+
+/// No program: the result opens as its path, a pass along a tube.
+fn write_pass(out: &Path) {
+    std::fs::write(
+        out.join("path.csv"),
+        "s,z,r,v,alpha,c,mu,alpha_deg,thickness\n\
+         0,0,50,0,0.9599,40.96,0,55,0.61\n\
+         0.523,0.3,50,0.0086,0.9599,40.96,0,55,0.61\n",
+    )
+    .unwrap();
 }
 
 /// A server for `dir` answering on a background thread: its address.
@@ -307,6 +319,7 @@ fn the_shipped_winders_chuck_flange_is_sent_from_formcam_itself() {
         r#"{"job": "vessel.toml", "machine_shipped": "winder-4axis"}"#,
     )
     .unwrap();
+    write_pass(&dir);
     let addr = start(&dir);
     let machine = get_json(addr, "/api/machine");
     let solid = solids(&machine, "mandrel")

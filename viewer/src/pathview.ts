@@ -70,6 +70,8 @@ export async function openPath(ready: Promise<void>): Promise<void> {
     points: machine.links.map(() => body.eye?.[0] ?? [0, 0, 0]),
   });
   if (body.eye) scene.addEye({ points: body.eye, times: [], ends: body.eye.length });
+  // Without an eye nothing places the payout point: no marker.
+  scene.showPayout(body.eye !== null);
   scene.addBand(body.band);
   const starts = body.band.layers;
   const total = body.band.points.length;

@@ -287,6 +287,12 @@ export class Scene {
     return [...this.highlighted].map((i) => this.links[i].name);
   }
 
+  /** Shows or hides the payout point's marker (hidden where nothing places it). */
+  showPayout(visible: boolean): void {
+    this.payout.visible = visible;
+    this.dirty = true;
+  }
+
   /** Places every link and the payout point as `s` says. */
   show(s: Sample): void {
     this.dirty = true;

@@ -99,9 +99,6 @@ pub struct RunFolder {
     pub summary: Map<String, Value>,
     /// The machine the program runs on.
     pub machine: Machine,
-    /// The machine file's folder (its meshes are named relative to it);
-    /// none for a shipped machine.
-    pub machine_dir: Option<PathBuf>,
     /// The machine file it was read from (`None`: a shipped machine).
     pub machine_file: Option<PathBuf>,
     /// The program file (`program.<ext>`), its text and dialect.
@@ -122,6 +119,12 @@ pub struct ProgramFile {
 }
 
 impl RunFolder {
+    /// The machine file's folder (its meshes are named relative to it);
+    /// none for a shipped machine.
+    pub fn machine_dir(&self) -> Option<&Path> {
+        self.machine_file.as_deref().and_then(Path::parent)
+    }
+
     /// Reads the result folder `root`: `summary.json`, the machine (from
     /// `machine`, else the shipped machine or the machine file the summary
     /// names, relative to its job), `program_file` and the path table.
@@ -147,10 +150,6 @@ impl RunFolder {
             Some(path) => (load_machine(path)?, Some(path.to_path_buf())),
             None => summary_machine(&summary_path, &summary)?,
         };
-        let machine_dir = machine_file
-            .as_deref()
-            .and_then(Path::parent)
-            .map(Path::to_path_buf);
         let program = match summary.get("program_file").and_then(Value::as_str) {
             Some(name) => Some(read_program(root, &summary_path, name)?),
             None => None,
@@ -159,7 +158,6 @@ impl RunFolder {
             root: root.to_path_buf(),
             summary,
             machine,
-            machine_dir,
             machine_file,
             program,
             path_table: read_path_table(root)?,

@@ -88,7 +88,7 @@ impl View {
         let real = root.canonicalize().map_err(|_| ViewError::NoFolder {
             path: root.to_path_buf(),
         })?;
-        let (scene, meshes) = MachineScene::read(&folder.machine, folder.machine_dir.as_deref());
+        let (scene, meshes) = MachineScene::read(&folder.machine, folder.machine_dir());
         let mandrel = match &folder.path_table {
             Some((path, text)) => Some(json(&MandrelScene::from_path_table(
                 folder.machine.roles.mandrel,

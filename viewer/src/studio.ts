@@ -182,7 +182,6 @@ async function mount(host: HTMLElement): Promise<void> {
   // Runs: the last started, its status; the one shown.
   let status: Status = { run: null, job: null, state: 'idle', phase: null, done: 0, total: 0, elapsed_s: 0, line: null, error: null };
   let shown: string | null = null;
-  let paused = false;
 
   const runs = new RunsList(q('.runs-host'), (name) => void showRun(name), (names) => void compare(names[0], names[1]));
 
@@ -310,8 +309,6 @@ async function mount(host: HTMLElement): Promise<void> {
     frame.hidden = false;
     placeholder.hidden = true;
     shown = name;
-    paused = false;
-    pauseButton.textContent = 'Pause';
     runs.mark(name);
     const loaded = new Promise<void>((res) => frame.addEventListener('load', () => res(), { once: true }));
     frame.src = `runs/${encodeURIComponent(name)}/`;
@@ -379,13 +376,9 @@ async function mount(host: HTMLElement): Promise<void> {
     showProgress(await postJson<Status>('/api/studio/cancel', {}));
   };
 
+  /** Pauses the result's animation (its own play button plays it again). */
   const pause = () => {
-    const view = (frame.contentWindow as (Window & typeof globalThis) | null)?.formcam;
-    if (!view) return;
-    if (paused) view.play();
-    else view.pause();
-    paused = !paused;
-    pauseButton.textContent = paused ? 'Play' : 'Pause';
+    (frame.contentWindow as (Window & typeof globalThis) | null)?.formcam?.pause();
   };
 
   const compare = async (a: string, b: string): Promise<CompareState> => {

@@ -6,17 +6,19 @@
 // and runs the saved file through the CLI) and screenshots
 // `studio-*.png`.
 //
-//   node viewer/tests/studio.mjs URL SCREENSHOT_DIR OUT_JSON FIELD FIRST SECOND BAD
+//   node viewer/tests/studio.mjs URL SCREENSHOT_DIR OUT_JSON FIELD FIRST SECOND BAD SLOW
 //   FIELD: the field edited (`winding.winding_angle_deg`); FIRST, SECOND:
-//   two good values run in turn; BAD: one out of its range.
+//   two good values run in turn; BAD: one out of its range; SLOW: fields
+//   set for the run cancelled (`winding.band_width=0.5;mandrel.length=1000`),
+//   one that takes seconds.
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
 import { canvases } from './canvas.mjs';
 
-const [url, shots, out, field, first, second, bad] = process.argv.slice(2);
-if (!url || !shots || !out || !field || first === undefined || second === undefined || bad === undefined) {
-  console.error('usage: node studio.mjs URL SCREENSHOT_DIR OUT_JSON FIELD FIRST SECOND BAD');
+const [url, shots, out, field, first, second, bad, slow] = process.argv.slice(2);
+if (!url || !shots || !out || !field || first === undefined || second === undefined || bad === undefined || slow === undefined) {
+  console.error('usage: node studio.mjs URL SCREENSHOT_DIR OUT_JSON FIELD FIRST SECOND BAD SLOW');
   process.exit(2);
 }
 mkdirSync(shots, { recursive: true });
@@ -152,10 +154,11 @@ try {
 
   // Cancel: a run stopped while it goes.
   step = 'cancel';
-  await page.evaluate(([f, v]) => {
-    window.formcamStudio.set(f, v);
+  const slowFields = slow.split(';').filter((p) => p !== '').map((p) => p.split('=')).map(([f, v]) => [f, value(v)]);
+  await page.evaluate((fields) => {
+    for (const [f, v] of fields) window.formcamStudio.set(f, v);
     window.cancelled = window.formcamStudio.run();
-  }, [field, value(first)]);
+  }, slowFields);
   await page.waitForFunction((prev) => {
     const s = window.formcamStudio.state();
     return s.run !== prev && s.runState !== 'idle';

@@ -6,7 +6,8 @@
 //! the same file, nothing run and the previous result left shown; Save:
 //! the file written (the previous one as `.bak`) and `formcam wind` on it
 //! gives the summary the studio's run gave; Reset back to the saved file;
-//! Pause stops the result's animation; a run cancelled. Screenshots go to
+//! Pause stops the result's animation and, again, plays it on; a run
+//! cancelled. Screenshots go to
 //! `target/screenshots/studio-*.png`.
 //!
 //! Skipped without `/usr/bin/chromium`, `viewer/node_modules` or a page
@@ -311,7 +312,14 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
         r["pause"]["later"].as_f64().unwrap(),
     );
     assert!(paused > 0.0, "{}", r["pause"]);
+    assert_eq!(r["pause"]["pausedState"], true, "{}", r["pause"]);
     assert_eq!(paused, later, "the animation went on after Pause");
+    assert!(
+        r["pause"]["resumed"].as_f64().unwrap() > later,
+        "Resume did not play on: {}",
+        r["pause"]
+    );
+    assert_eq!(r["pause"]["label"], "Pause", "{}", r["pause"]);
 
     // Cancel: the run stopped, listed as cancelled, the result before it shown.
     let c = &r["after_cancel"];

@@ -7,5 +7,13 @@
 //! kept, the previous version as `.bak`).
 
 mod error;
+mod runs;
+mod server;
+mod studio;
 
 pub use error::StudioError;
+pub use runs::{
+    RUN_FILE, RUN_JOB_FILE, RUNS_FOLDER, RunEntry, RunOrder, RunState, RunStatus, Runs,
+};
+pub use server::StudioServer;
+pub use studio::{Answer, MAX_BODY_BYTES, Studio, StudioMethod};

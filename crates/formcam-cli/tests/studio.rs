@@ -72,7 +72,11 @@ fn studio_prints_its_address_first_and_answers_there() {
     if !formcam_view::Page::is_embedded() {
         let o = formcam().args(["studio", s(&dir)]).output().unwrap();
         assert_eq!(o.status.code(), Some(2));
-        assert!(stderr(&o).contains("npm ci && npm run build"), "{}", stderr(&o));
+        assert!(
+            stderr(&o).contains("npm ci && npm run build"),
+            "{}",
+            stderr(&o)
+        );
         return;
     }
     let st = studio(&dir.join("nut.toml"));

@@ -15,7 +15,7 @@ use std::thread;
 use std::time::{Instant, SystemTime, UNIX_EPOCH};
 
 use formcam_progress::{Hook, Step};
-use formcam_run::{JobKind, RunError, RunOutput, run_job_text_with};
+use formcam_run::{RunError, RunOutput, run_job_text_with};
 use serde::Serialize;
 
 use crate::{StudioError, StudioKind};
@@ -213,9 +213,12 @@ impl Runs {
         let name = {
             let mut l = self.shared.latest();
             l.flag.store(true, Ordering::Relaxed);
-            let name = free_name(&self.shared.dir, &run_stamp(SystemTime::now()), &stem, |n| {
-                l.taken.contains(n)
-            });
+            let name = free_name(
+                &self.shared.dir,
+                &run_stamp(SystemTime::now()),
+                &stem,
+                |n| l.taken.contains(n),
+            );
             l.taken.insert(name.clone());
             l.flag = Arc::clone(&flag);
             l.started = Some(Instant::now());
@@ -374,7 +377,7 @@ fn run_one(shared: &Shared, q: &Queued) -> Result<String, Ended> {
             l.status.total = step.total;
         });
     });
-    let output = run_job_text_with(&job, &q.order.text, job_kind(q.order.kind), &out, &hook)
+    let output = run_job_text_with(&job, &q.order.text, q.order.kind.job_kind(), &out, &hook)
         .map_err(|e| match e {
             e if e.is_cancelled() => Ended::Cancelled,
             e => Ended::Failed(e.to_string()),
@@ -405,16 +408,6 @@ fn write_run(out: &Path, q: &Queued, output: RunOutput) -> Result<String, Ended>
     formcam_files::write_folder(out, &files, &output.inputs)
         .map_err(|e| Ended::Failed(e.to_string()))?;
     Ok(output.line)
-}
-
-/// The run of formcam-run for a studio kind.
-fn job_kind(kind: StudioKind) -> JobKind {
-    match kind {
-        StudioKind::Winding => JobKind::Winding,
-        StudioKind::Dressing => JobKind::Dressing,
-        StudioKind::Correction => JobKind::Correction,
-        StudioKind::Scenario => JobKind::Scenario,
-    }
 }
 
 /// `<stamp>-<stem>`, or with `-2`, `-3`, ... where that name is `taken` or
@@ -490,7 +483,10 @@ mod tests {
         std::fs::create_dir_all(runs.join("20260101-000000-a")).unwrap();
         let n = free_name(&dir, "20260101-000000", "a", |n| n.ends_with("-a-2"));
         assert_eq!(n, "20260101-000000-a-3");
-        assert_eq!(free_name(&dir, "20260101-000000", "b", |_| false), "20260101-000000-b");
+        assert_eq!(
+            free_name(&dir, "20260101-000000", "b", |_| false),
+            "20260101-000000-b"
+        );
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -210,12 +210,12 @@ dialect = \"sinumerik-840d\"
 const FIELD: &str = "winding.winding_angle_deg";
 const FIRST: &str = "50";
 const SECOND: &str = "65";
-const BAD: &str = "95";
+const BAD: &str = "95.0";
 /// The fields set for the run cancelled: one that takes seconds.
 const SLOW: &str = "winding.band_width=0.5;mandrel.length=1000";
 
 /// A summary without what differs between two runs of the same job: the
-/// job's path (nothing measured goes into a summary).
+/// job's path (nothing measured goes into a summary); numbers as floats.
 fn comparable(v: &Value) -> Value {
     match v {
         Value::Object(m) => Value::Object(
@@ -225,6 +225,8 @@ fn comparable(v: &Value) -> Value {
                 .collect(),
         ),
         Value::Array(a) => Value::Array(a.iter().map(comparable).collect()),
+        // Passed through the page, `0.0` comes back as `0`.
+        Value::Number(n) => serde_json::json!(n.as_f64()),
         other => other.clone(),
     }
 }
@@ -243,7 +245,16 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
     let report = dir.join("studio.json");
     let shots = repo().join("target/screenshots");
     let node = driver(
-        &[&st.url, s(&shots), s(&report), FIELD, FIRST, SECOND, BAD, SLOW],
+        &[
+            &st.url,
+            s(&shots),
+            s(&report),
+            FIELD,
+            FIRST,
+            SECOND,
+            BAD,
+            SLOW,
+        ],
         &report,
     );
     drop(st);
@@ -277,7 +288,10 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
         assert!(jobs.join("runs").join(name).join("summary.json").is_file());
     }
     assert_ne!(r["first_run"], r["second_run"]);
-    assert_eq!(r["after_second"]["runs"][0], r["second_run"], "newest first");
+    assert_eq!(
+        r["after_second"]["runs"][0], r["second_run"],
+        "newest first"
+    );
     assert_ne!(
         comparable(&first["result"]),
         comparable(&second["result"]),
@@ -295,15 +309,17 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
     assert!(first["scene"][0]["colours"].as_u64().unwrap() > 10);
     assert_ne!(hashes(&first["scene"]), hashes(&second["scene"]));
 
-    // The value out of range: refused at its field in the CLI's words.
+    // The value out of range: refused at its field in the CLI's words, those
+    // `formcam wind` prints for the text the studio checked (the file named
+    // as given there: in the studio's folder, here beside it).
     let bad_dir = dir.join("bad");
     std::fs::create_dir_all(&bad_dir).unwrap();
-    let bad_job = bad_dir.join("tube.toml");
-    std::fs::write(
-        &bad_job,
-        JOB.replace("winding_angle_deg = 55.0", &format!("winding_angle_deg = {BAD}")),
-    )
-    .unwrap();
+    let bad_text = r["bad_state"]["text"].as_str().unwrap();
+    assert!(
+        bad_text.contains(&format!("winding_angle_deg = {BAD}")),
+        "{bad_text}"
+    );
+    std::fs::write(bad_dir.join("tube.toml"), bad_text).unwrap();
     let cli = formcam()
         .current_dir(&bad_dir)
         .args(["wind", "tube.toml", "-o", "out"])
@@ -311,8 +327,12 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
         .unwrap();
     assert_eq!(cli.status.code(), Some(2), "{}", stderr(&cli));
     let message = r["bad_state"]["errors"][FIELD].as_str().unwrap();
+    let words = message
+        .strip_prefix(&format!("{}/", jobs.display()))
+        .unwrap_or(message);
+    assert!(words.starts_with("tube.toml: "), "{message}");
     assert!(
-        stderr(&cli).contains(message),
+        stderr(&cli).contains(words),
         "the studio says {message:?}, formcam wind says {:?}",
         stderr(&cli)
     );

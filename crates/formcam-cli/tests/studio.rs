@@ -10,7 +10,8 @@
 //! at that field in the words `formcam wind` prints for the same file,
 //! nothing run and the previous result left shown; Save: the file written
 //! (the previous one as `.bak`) and `formcam wind` on it gives the summary
-//! the studio's run gave; Reset back to the saved file; Pause stops the
+//! the studio's run gave; two runs ticked and compared side by side;
+//! Reset back to the saved file; Pause stops the
 //! result's animation and, again, plays it on; a run cancelled.
 //! Screenshots go to `target/screenshots/studio-*.png`. The browser test
 //! is skipped without `/usr/bin/chromium`, `viewer/node_modules` or a page
@@ -308,6 +309,17 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
     assert_ne!(hashes(&first["plots"]), hashes(&second["plots"]));
     assert!(first["scene"][0]["colours"].as_u64().unwrap() > 10);
     assert_ne!(hashes(&first["scene"]), hashes(&second["scene"]));
+
+    // The two runs ticked and compared in place of the result, then back.
+    let c = &r["compare"];
+    assert_eq!(
+        c["selected"],
+        serde_json::json!([r["first_run"], r["second_run"]]),
+        "{c}"
+    );
+    assert_eq!(c["shown"], true, "{c}");
+    assert_eq!(c["frame_hidden"], true, "{c}");
+    assert_eq!(c["back"], true, "{c}");
 
     // The value out of range: refused at its field in the CLI's words, those
     // `formcam wind` prints for the text the studio checked (the file named

@@ -18,26 +18,11 @@
 
 mod common;
 
-use std::io::{BufRead, BufReader, Read, Write};
-use std::net::TcpStream;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
+use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{formcam, machines, repo, s, scratch, stderr, wind_ok};
-
-/// `formcam view` running, ended when dropped.
-struct Running {
-    child: Child,
-    url: String,
-}
-
-impl Drop for Running {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
+use common::{Running, formcam, get, machines, repo, s, scratch, serving, stderr, wind_ok};
 
 /// Starts `formcam view OUT --port 0` and reads the address it prints first.
 fn view(out: &Path) -> Running {
@@ -46,37 +31,9 @@ fn view(out: &Path) -> Running {
 
 /// [`view`] with more arguments.
 fn view_with(out: &Path, more: &[&str]) -> Running {
-    let mut child = formcam()
-        .args(["view", s(out), "--port", "0"])
-        .args(more)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut first = String::new();
-    BufReader::new(child.stdout.take().unwrap())
-        .read_line(&mut first)
-        .unwrap();
-    let url = first.trim_end().to_string();
-    Running { child, url }
-}
-
-/// A GET of `path` on the server at `url`: status line and body.
-fn get(url: &str, path: &str) -> (String, Vec<u8>) {
-    let addr = url.trim_start_matches("http://").trim_end_matches('/');
-    let mut c = TcpStream::connect(addr).unwrap();
-    c.write_all(
-        format!("GET {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n").as_bytes(),
-    )
-    .unwrap();
-    let mut out = Vec::new();
-    c.read_to_end(&mut out).unwrap();
-    let i = out.windows(4).position(|w| w == b"\r\n\r\n").unwrap();
-    let head = String::from_utf8_lossy(&out[..i]).into_owned();
-    (
-        head.lines().next().unwrap_or("").to_string(),
-        out[i + 4..].to_vec(),
-    )
+    let mut args = vec!["view", s(out), "--port", "0"];
+    args.extend_from_slice(more);
+    serving(&args)
 }
 
 /// A winding result on the 4-axis winder.

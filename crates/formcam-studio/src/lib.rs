@@ -13,7 +13,7 @@ mod kind;
 mod save;
 mod values;
 
-pub use check::{FieldError, check_job};
+pub use check::{Applied, FieldError, apply_job, check_job};
 pub use error::{NameProblem, StudioError, ValuesProblem};
 pub use examples::{Example, example, examples, start_example};
 pub use kind::StudioKind;

@@ -86,7 +86,7 @@ try {
   };
   await frames(page);
   report.start = await state(page);
-  await page.screenshot({ path: join(shots, 'dressing-start.png') });
+  await page.screenshot({ path: join(shots, 'dressing-open.png') });
 
   // Pause and resume: by `window.formcam`, then by the button.
   step = 'pause';
@@ -101,7 +101,7 @@ try {
   await page.evaluate(() => window.formcam.play());
   await page.waitForTimeout(600);
   const resumed = await state(page);
-  await page.screenshot({ path: join(shots, 'dressing-playing.png') });
+  await page.screenshot({ path: join(shots, 'dressing-resumed.png') });
   await page.click('#app2d button.play');
   const buttonPaused = await state(page);
   await page.waitForTimeout(300);

@@ -89,6 +89,8 @@ const REMOVED_RGB: [number, number, number] = [246, 178, 92];
 const MARKER = '#7b3294';
 const CONTROLLED = COLOURS[0];
 const UNCONTROLLED = COLOURS[4];
+/** The speeds offered, times the program's own time. */
+const SPEEDS = [0.01, 0.02, 0.05, 0.1, 0.25, 1, 4, 10, 100];
 /** While playing, the text and plots beside the picture follow at most this often, ms. */
 const TEXT_MS = 100;
 
@@ -122,9 +124,7 @@ export async function openDressing(host: HTMLElement, ready: Promise<void>): Pro
     <footer>
       <button class="play" title="Play or pause">play</button>
       <input class="scrub" type="range" min="0" max="100000" value="0" step="1" />
-      <label>speed <select class="speed">
-        <option value="0.1">0.1x</option><option value="0.25">0.25x</option><option value="1" selected>1x</option>
-        <option value="4">4x</option><option value="10">10x</option><option value="100">100x</option></select></label>
+      <label>speed <select class="speed">${SPEEDS.map((v) => `<option value="${v}">${v}x</option>`).join('')}</select></label>
       <span class="clock"></span>
     </footer>`;
   const q = <T extends HTMLElement>(sel: string) => host.querySelector(sel) as T;
@@ -132,7 +132,8 @@ export async function openDressing(host: HTMLElement, ready: Promise<void>): Pro
   const duration = d.duration_s;
   let shown: DresserSample = { t: 0, block: 0, line: d.lines[0] ?? 0, dresser: [d.points[0][1], d.points[0][0]] };
   let playing = false;
-  let speed = 1;
+  // At first the whole program plays in about 20 s.
+  let speed = SPEEDS.reduce((a, b) => (Math.abs(Math.log(b * 20 / duration)) < Math.abs(Math.log(a * 20 / duration)) ? b : a));
   let frames = 0;
   let marker: Marker | null = null;
   const passOf = (block: number) => d.block_pass[block] ?? 0;
@@ -425,6 +426,7 @@ export async function openDressing(host: HTMLElement, ready: Promise<void>): Pro
     void seek((Number((e.target as HTMLInputElement).value) / 100000) * duration);
   });
   const speedSelect = q('.speed') as HTMLSelectElement;
+  speedSelect.value = String(speed);
   speedSelect.addEventListener('change', () => { speed = Number(speedSelect.value); });
 
   let last = performance.now();

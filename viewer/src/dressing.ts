@@ -46,6 +46,8 @@ interface Marker {
   /** The step of that row (0-based, `mrr.csv`'s order) and its point A `[z, x]`. */
   step: number;
   point_a: [number, number];
+  /** Where the dressing corner was nearest the profile at that step: `[z, x]`. */
+  contact: [number, number] | null;
   /** The marker's line on the profile's canvas, CSS px from its left. */
   px: number;
 }
@@ -186,16 +188,15 @@ export async function openDressing(host: HTMLElement, ready: Promise<void>): Pro
     ctx.stroke();
   };
   /** The dressing corner (pass `p`'s) with point A at `[z, x]`. */
-  const corner = (v: View2d, ctx: CanvasRenderingContext2D, p: number, z: number, x: number, stroke: string, fill: string) => {
+  /** (Its circle is not filled: the region removed under it shows.) */
+  const corner = (v: View2d, ctx: CanvasRenderingContext2D, p: number, z: number, x: number, stroke: string) => {
     const pd = passData(p) ?? passData(1);
     if (!pd) return;
     const [oz, ox] = pd.corner_offset;
     ctx.strokeStyle = stroke;
-    ctx.fillStyle = fill;
     ctx.lineWidth = 2;
     ctx.beginPath();
     ctx.arc(v.px(z + oz), v.py(x + ox), Math.max(pd.corner_radius * v.pixelsPerMm, 1), 0, 2 * Math.PI);
-    ctx.fill();
     ctx.stroke();
     ctx.beginPath();
     ctx.moveTo(v.px(z + oz), v.py(x));
@@ -223,17 +224,22 @@ export async function openDressing(host: HTMLElement, ready: Promise<void>): Pro
       ctx.lineTo(m.px, v.canvas.clientHeight);
       ctx.stroke();
       ctx.setLineDash([]);
-      corner(v, ctx, d.mrr.pass[m.step], m.point_a[0], m.point_a[1], MARKER, 'rgba(123, 50, 148, 0.1)');
+      corner(v, ctx, d.mrr.pass[m.step], m.point_a[0], m.point_a[1], MARKER);
       if (m.profile_x !== null) {
-        ctx.fillStyle = MARKER;
         ctx.beginPath();
         ctx.arc(m.px, v.py(m.profile_x), 5, 0, 2 * Math.PI);
+        ctx.stroke();
+      }
+      ctx.fillStyle = MARKER;
+      for (const [z, x] of m.contact ? [m.point_a, m.contact] : [m.point_a]) {
+        ctx.beginPath();
+        ctx.arc(v.px(z), v.py(x), 4, 0, 2 * Math.PI);
         ctx.fill();
       }
     }
     // The dresser at point A: its dressing corner and periphery.
     const [x, z] = shown.dresser;
-    corner(v, ctx, passOf(shown.block), z, x, '#d62728', 'rgba(214, 39, 40, 0.15)');
+    corner(v, ctx, passOf(shown.block), z, x, '#d62728');
     ctx.fillStyle = '#d62728';
     ctx.beginPath();
     ctx.arc(v.px(z), v.py(x), 4, 0, 2 * Math.PI);
@@ -281,6 +287,19 @@ export async function openDressing(host: HTMLElement, ready: Promise<void>): Pro
     }
     return best;
   };
+  /** The profile's point nearest the dressing corner of pass `p` with point A at `[z, x]`. */
+  const contact = (p: number, z: number, x: number): [number, number] | null => {
+    const pd = passData(p);
+    if (!pd) return null;
+    const [cz, cx] = [z + pd.corner_offset[0], x + pd.corner_offset[1]];
+    let best: [number, number] | null = null;
+    let dist = Infinity;
+    for (const [pz, px] of d.profile) {
+      const e = (pz - cz) ** 2 + (px - cx) ** 2;
+      if (e < dist) { dist = e; best = [pz, px]; }
+    }
+    return best;
+  };
   let restRow: number | null = null;
   const cursorZ = () => shown.dresser[1];
   const hover = (u: uPlot) => {
@@ -292,7 +311,7 @@ export async function openDressing(host: HTMLElement, ready: Promise<void>): Pro
       const z = m.z[k];
       const at = sampleAt(d.profile, Float64Array.of(z))[0];
       const inside = d.profile.length > 1 && z >= d.profile[0][0] && z <= d.profile[d.profile.length - 1][0];
-      marker = { z, profile_x: inside ? at : null, step: k, point_a: [z, m.x[k]], px: view.px(z) };
+      marker = { z, profile_x: inside ? at : null, step: k, point_a: [z, m.x[k]], contact: contact(m.pass[k], z, m.x[k]), px: view.px(z) };
     }
     if (was !== marker) view.draw();
   };
@@ -329,7 +348,7 @@ export async function openDressing(host: HTMLElement, ready: Promise<void>): Pro
     scales: { x: { time: false } },
     series,
     cursor: { sync },
-    axes: [{ label: 'Z (mm)' }, { scale, label }],
+    axes: [{ label: 'Z of point A (mm)' }, { scale, label }],
     hooks: { draw: [cursorHook(cursorZ)], setCursor: [hover] },
   });
   const plots = [
@@ -466,7 +485,7 @@ export async function openDressing(host: HTMLElement, ready: Promise<void>): Pro
     play: (s?: number) => {
       if (s) {
         speed = s;
-        if (![...speedSelect.options].some((o) => Number(o.value) === s)) speedSelect.add(new Option(`${s}x`, String(s)));
+        if (![...speedSelect.options].some((o) => Number(o.value) === s)) speedSelect.add(new Option(`${+s.toPrecision(3)}x`, String(s)));
         speedSelect.value = String(s);
       }
       if (shown.t >= duration) show(local(0));

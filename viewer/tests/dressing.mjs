@@ -91,15 +91,18 @@ try {
   // Pause and resume: by `window.formcam`, then by the button.
   step = 'pause';
   await page.evaluate((t) => window.formcam.seek(t), 0.1 * duration);
+  const started = (await state(page)).time_s;
+  /** Waits until the time shown has moved past `t` (a loaded machine draws few frames). */
+  const after = (t) => page.waitForFunction((tt) => window.formcam.state().time_s > tt, t, { timeout: 30_000 });
   await page.evaluate((s) => window.formcam.play(s), duration / 30);
-  await page.waitForTimeout(600);
+  await after(started);
   const running = await state(page);
   await page.evaluate(() => window.formcam.pause());
   const paused = await state(page);
   await page.waitForTimeout(300);
   const still = await state(page);
   await page.evaluate(() => window.formcam.play());
-  await page.waitForTimeout(600);
+  await after(still.time_s);
   const resumed = await state(page);
   await page.screenshot({ path: join(shots, 'dressing-resumed.png') });
   await page.click('#app2d button.play');
@@ -107,10 +110,10 @@ try {
   await page.waitForTimeout(300);
   const buttonStill = await state(page);
   await page.click('#app2d button.play');
-  await page.waitForTimeout(400);
+  await after(buttonStill.time_s);
   const buttonResumed = await state(page);
   await page.evaluate(() => window.formcam.pause());
-  report.pause = { running, paused, still, resumed, buttonPaused, buttonStill, buttonResumed };
+  report.pause = { started, running, paused, still, resumed, buttonPaused, buttonStill, buttonResumed };
 
   // The contour as cut so far, through the program.
   step = 'forming';
@@ -173,6 +176,7 @@ try {
   await frames(page);
   report.cursor = await state(page);
   const over = await page.$('#app2d .mrr .u-over');
+  await over.scrollIntoViewIfNeeded();
   const ob = await over.boundingBox();
   report.hover = [];
   for (const f of [0.3, 0.7]) {

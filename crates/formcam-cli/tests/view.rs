@@ -465,8 +465,7 @@ fn the_browser_plays_the_dressing_at_the_points_the_server_computes() {
 
 /// A number of the driver's report.
 fn num(v: &serde_json::Value) -> f64 {
-    v.as_f64()
-        .unwrap_or_else(|| panic!("not a number: {v}"))
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
 }
 
 #[test]
@@ -531,7 +530,11 @@ fn the_browser_pauses_zooms_and_links_the_dressing_views() {
         (end - between).abs() < 0.01 * between,
         "removed {end} mm² at the end, the simulation {between} mm²"
     );
-    assert_eq!(sent["contours"], sent["steps"].as_object().unwrap().len(), "{sent:#}");
+    assert_eq!(
+        sent["contours"],
+        sent["steps"].as_object().unwrap().len(),
+        "{sent:#}"
+    );
 
     // The program line marked is the state's, within the text's box.
     for seen in r["program"].as_array().unwrap() {
@@ -597,7 +600,12 @@ fn the_browser_pauses_zooms_and_links_the_dressing_views() {
     }
     assert_eq!(plots["feed"]["without control"], sent["all_steps"]);
     let colours = &r["colours"];
-    for k in ["controlled", "uncontrolled", "feed_controlled", "feed_uncontrolled"] {
+    for k in [
+        "controlled",
+        "uncontrolled",
+        "feed_controlled",
+        "feed_uncontrolled",
+    ] {
         assert!(colours[k].as_u64().unwrap() > 20, "{k}: {colours:#}");
     }
     no_dashes(&r);

@@ -240,10 +240,7 @@ fn the_dressing_sends_each_pass_contour_each_blocks_pass_and_both_feeds() {
     assert!(areas.windows(2).all(|w| w[1] < w[0]), "{areas:?}");
     let between = summary["area_between_contours_mm2"].as_f64().unwrap();
     let got = areas[0] - areas[passes];
-    assert!(
-        (got - between).abs() < 1e-6 * between,
-        "{got} vs {between}"
-    );
+    assert!((got - between).abs() < 1e-6 * between, "{got} vs {between}");
 
     // Each block's pass: the runs of feed moves, counted from 1, rapid
     // moves with the pass before; each pass's first feed move starts at
@@ -256,7 +253,11 @@ fn the_dressing_sends_each_pass_contour_each_blocks_pass_and_both_feeds() {
         .collect();
     let t = numbers(&d["t"]);
     assert_eq!(block_pass.len(), t.len() - 1);
-    assert!(block_pass.windows(2).all(|w| w[1] == w[0] || w[1] == w[0] + 1));
+    assert!(
+        block_pass
+            .windows(2)
+            .all(|w| w[1] == w[0] || w[1] == w[0] + 1)
+    );
     assert_eq!(block_pass[0], 0, "the program starts with a rapid move");
     assert_eq!(*block_pass.last().unwrap() as usize, passes);
     for (p, pass) in d["passes"].as_array().unwrap().iter().enumerate() {
@@ -277,17 +278,17 @@ fn the_dressing_sends_each_pass_contour_each_blocks_pass_and_both_feeds() {
     let m = &d["mrr"];
     let f0 = summary["feed_uncontrolled_mm_min"].as_f64().unwrap();
     assert_eq!(m["feed_uncontrolled"].as_f64(), Some(f0));
-    assert_eq!(
-        m["target"].as_f64(),
-        summary["target_mrr_mm2_min"].as_f64()
-    );
+    assert_eq!(m["target"].as_f64(), summary["target_mrr_mm2_min"].as_f64());
     let table = formcam_view::Table::read(&dir.join("mrr.csv")).unwrap();
     let per_mm = table.numbers("area_per_mm").unwrap();
     let free = numbers(&m["mrr_uncontrolled"]);
     assert_eq!(free.len(), per_mm.len());
     assert_eq!(numbers(&m["x"]), table.numbers("x").unwrap());
     for (k, (r, a)) in free.iter().zip(&per_mm).enumerate() {
-        assert!((r - a * f0).abs() <= 1e-5 + 1e-6 * r.abs(), "step {k}: {r} vs {a} * {f0}");
+        assert!(
+            (r - a * f0).abs() <= 1e-5 + 1e-6 * r.abs(),
+            "step {k}: {r} vs {a} * {f0}"
+        );
     }
     // Feed control evens the rate out over the steady steps.
     let steady = table.numbers("steady").unwrap();

@@ -117,12 +117,13 @@ export async function openDressing(host: HTMLElement, ready: Promise<void>): Pro
   host.innerHTML = `
     <header><strong>${api.PAGE_NAME}: dressing ${esc(String(summary.job ?? ''))}</strong>
       <span class="status">${d.passes.length} passes, ${d.lines.length} blocks, ${d.duration_s.toFixed(2)} s</span></header>
-    <main class="drawing"><div class="tools"><button class="fit" title="Back to the whole wheel (or double-click)">reset view</button></div></main>
+    <main class="drawing with-program"><div class="section-view">
+        <div class="tools"><button class="fit" title="Back to the whole wheel (or double-click)">reset view</button></div></div>
+      <div class="program-section"><h2>Program (program.mpf)</h2><div class="program"></div></div></main>
     <aside><section><h2>Removal rate against Z</h2><div class="mrr"></div></section>
       <section><h2>Feed against Z</h2><div class="feed"></div></section>
       <section><h2>Dresser</h2><table class="readout"></table></section>
-      <section class="legend"></section>
-      <section class="program-section"><h2>Program (program.mpf)</h2><div class="program"></div></section></aside>
+      <section class="legend"></section></aside>
     <footer>
       <button class="play" title="Play or pause">play</button>
       <input class="scrub" type="range" min="0" max="100000" value="0" step="1" />
@@ -203,7 +204,7 @@ export async function openDressing(host: HTMLElement, ready: Promise<void>): Pro
     ctx.lineTo(v.px(z), v.py(x));
     ctx.stroke();
   };
-  const view = new View2d(q('.drawing'), (v, ctx) => {
+  const view = new View2d(q('.section-view'), (v, ctx) => {
     removal(v, ctx);
     removed(v, ctx);
     v.line(ctx, d.initial, colours.initial, 1.2);

@@ -129,6 +129,23 @@ try {
     if (f === 0.25) await page.screenshot({ path: join(shots, 'dressing-forming.png') });
   }
 
+  // At each pass's end: the area removed by then, and the simulation's
+  // (the sum of `mrr.csv`'s step areas of the passes so far).
+  step = 'pass ends';
+  const mrrCsv = (await (await fetch(new URL('files/mrr.csv', url))).text()).trim().split('\n');
+  const head = mrrCsv[0].split(',');
+  const [ai, pi] = [head.indexOf('area'), head.indexOf('pass')];
+  const rows = mrrCsv.slice(1).map((l) => l.split(','));
+  report.pass_ends = [];
+  for (const p of passes) {
+    let end = -1;
+    body.block_pass.forEach((q, b) => { if (q === p && body.t[b + 1] > body.t[b]) end = b; });
+    await page.evaluate((t) => window.formcam.seek(t), body.t[end + 1]);
+    const s = await state(page);
+    const simulated = rows.filter((r) => Number(r[pi]) <= p).reduce((a, r) => a + Number(r[ai]), 0);
+    report.pass_ends.push({ pass: p, time_s: s.time_s, removed_mm2: s.removed_mm2, simulated_mm2: simulated });
+  }
+
   // The program's line of the block shown, marked and in sight; a click
   // on a line goes there.
   step = 'program';
@@ -140,8 +157,8 @@ try {
     const text = await page.evaluate(() => document.querySelector('#app2d .program .row.current')?.textContent ?? '');
     report.program.push({ line: s.line, marked_line: s.marked_line, marked_in_sight: s.marked_in_sight, text });
   }
-  const rows = await page.$$('#app2d .program .row');
-  const pick = rows[Math.min(rows.length - 1, 12)];
+  const programRows = await page.$$('#app2d .program .row');
+  const pick = programRows[Math.min(programRows.length - 1, 12)];
   const picked = Number(await pick.getAttribute('data-line'));
   await pick.click();
   await page.waitForFunction((l) => window.formcam.state().line >= l, picked);

@@ -535,6 +535,17 @@ fn the_browser_pauses_zooms_and_links_the_dressing_views() {
         sent["steps"].as_object().unwrap().len(),
         "{sent:#}"
     );
+    // At each pass's end, what the simulation removed by then.
+    let ends = r["pass_ends"].as_array().unwrap();
+    assert_eq!(ends.len(), 2, "{r:#}");
+    for e in ends {
+        let (shown, simulated) = (num(&e["removed_mm2"]), num(&e["simulated_mm2"]));
+        assert!(
+            (shown - simulated).abs() < 0.01 * simulated,
+            "pass {}: {shown} mm² shown, {simulated} mm² simulated",
+            e["pass"]
+        );
+    }
 
     // The program line marked is the state's, within the text's box.
     for seen in r["program"].as_array().unwrap() {

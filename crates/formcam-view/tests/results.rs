@@ -18,10 +18,16 @@ fn repo() -> PathBuf {
 
 /// The result of the example job `name`, written into a fresh folder.
 fn result(name: &str) -> PathBuf {
+    result_as(name, name)
+}
+
+/// [`result`] into the folder `folder` (tests running at once of the same
+/// job each write their own).
+fn result_as(name: &str, folder: &str) -> PathBuf {
     let job = repo().join("examples").join(name);
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join("view-results")
-        .join(name);
+        .join(folder);
     let _ = std::fs::remove_dir_all(&dir);
     let run = formcam_run::run_job_file(&job, &dir).unwrap();
     for f in &run.files {
@@ -218,7 +224,7 @@ fn area_under(c: &Value, base: f64) -> f64 {
 
 #[test]
 fn the_dressing_sends_each_pass_contour_each_blocks_pass_and_both_feeds() {
-    let dir = result("dress-ballscrew-nut.toml");
+    let dir = result_as("dress-ballscrew-nut.toml", "dress-contours");
     let view = View::open(&dir, None, Page::default()).unwrap();
     let d = get(&view, "/api/dressing");
     let summary: Value =
@@ -303,6 +309,39 @@ fn the_dressing_sends_each_pass_contour_each_blocks_pass_and_both_feeds() {
     };
     let (with, without) = (spread(&numbers(&m["mrr"])), spread(&free));
     assert!(with < without, "{with} vs {without}");
+}
+
+#[test]
+fn a_dressing_result_without_the_passes_contours_opens_without_them() {
+    let dir = result_as("dress-ballscrew-nut.toml", "dress-with-passes");
+    let old = dir.with_file_name("dress-without-passes");
+    let _ = std::fs::remove_dir_all(&old);
+    std::fs::create_dir_all(&old).unwrap();
+    for e in std::fs::read_dir(&dir).unwrap() {
+        let e = e.unwrap();
+        if e.file_name() != "contour_passes.csv" {
+            std::fs::copy(e.path(), old.join(e.file_name())).unwrap();
+        }
+    }
+    let with = get(
+        &View::open(&dir, None, Page::default()).unwrap(),
+        "/api/dressing",
+    );
+    let without = get(
+        &View::open(&old, None, Page::default()).unwrap(),
+        "/api/dressing",
+    );
+    assert_eq!(without["contours"], serde_json::json!([]));
+    for k in [
+        "initial",
+        "final_contour",
+        "block_pass",
+        "mrr",
+        "t",
+        "points",
+    ] {
+        assert_eq!(with[k], without[k], "{k}");
+    }
 }
 
 #[test]

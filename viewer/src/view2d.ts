@@ -52,8 +52,21 @@ export class View2d {
       this.draw();
     });
     this.canvas.addEventListener('pointerup', () => { drag = null; });
-    this.canvas.addEventListener('dblclick', () => this.fit(this.bounds));
+    this.canvas.addEventListener('dblclick', () => this.reset());
     new ResizeObserver(() => this.draw()).observe(host);
+  }
+
+  /** Back to the bounds last fitted (undoes zoom and pan). */
+  reset(): void {
+    this.fit(this.bounds);
+  }
+
+  /** The world rectangle in sight, mm. */
+  visible(): Bounds {
+    const { w, h } = this.size();
+    const [x0, y1] = this.world(0, 0);
+    const [x1, y0] = this.world(w, h);
+    return { x0, x1, y0, y1 };
   }
 
   /** Shows `b` whole, with a margin. */

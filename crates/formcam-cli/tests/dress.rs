@@ -66,6 +66,7 @@ fn the_seed_job_writes_its_files() {
             ".formcam-run",
             "contour_final.csv",
             "contour_initial.csv",
+            "contour_passes.csv",
             "dresser.csv",
             "mrr.csv",
             "mrr.svg",

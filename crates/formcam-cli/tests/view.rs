@@ -427,6 +427,170 @@ fn the_browser_plays_the_dressing_at_the_points_the_server_computes() {
     assert!(removed.windows(2).all(|w| w[0] < w[1]), "{removed:?}");
 }
 
+/// A number of the driver's report.
+fn num(v: &serde_json::Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+#[test]
+fn the_browser_pauses_zooms_and_links_the_dressing_views() {
+    if !browser_present() {
+        return;
+    }
+    let out = scratch("browser-dress-views").join("out");
+    let job = repo().join("examples/dress-ballscrew-nut.toml");
+    let o = formcam()
+        .args(["dress", s(&job), "-o", s(&out)])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v = view(&out);
+    let report = out.parent().unwrap().join("dressing-views.json");
+    let shots = repo().join("target/screenshots");
+    let node = driver("dressing.mjs", &[&v.url, s(&shots), s(&report)], &report);
+    drop(v);
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap_or_default())
+            .unwrap_or_else(|_| panic!("{}", String::from_utf8_lossy(&node.stderr)));
+    assert!(node.status.success(), "{r:#}");
+    assert_eq!(r["errors"], serde_json::json!([]), "{r:#}");
+    let sent = &r["sent"];
+
+    // Paused, the time stands across 300 ms; resumed, it goes on from there.
+    let p = &r["pause"];
+    let t = |k: &str| num(&p[k]["time_s"]);
+    assert!(t("running") > num(&p["started"]), "{p:#}");
+    assert_eq!(p["paused"]["playing"], false, "{p:#}");
+    assert_eq!(t("paused"), t("still"), "{p:#}");
+    assert!(t("resumed") > t("still"), "{p:#}");
+    assert_eq!(p["buttonPaused"]["playing"], false, "{p:#}");
+    assert_eq!(t("buttonPaused"), t("buttonStill"), "{p:#}");
+    assert!(t("buttonResumed") > t("buttonStill"), "{p:#}");
+
+    // The contour as cut: nothing removed at the start, more and more as
+    // the program runs, at the end the area between the contours the
+    // simulation gives (to the page's grid of Z).
+    let forming = r["forming"].as_array().unwrap();
+    let removed: Vec<f64> = forming.iter().map(|f| num(&f["removed_mm2"])).collect();
+    let pixels: Vec<u64> = forming
+        .iter()
+        .map(|f| f["removed_px"].as_u64().unwrap())
+        .collect();
+    assert_eq!(removed[0], 0.0, "{removed:?}");
+    assert_eq!(pixels[0], 0, "{pixels:?}");
+    assert!(
+        removed.windows(2).all(|w| w[1] > w[0]),
+        "the removed area does not grow: {removed:?}"
+    );
+    // (The dresser drawn over the region hides a few of its pixels.)
+    let n = pixels.len();
+    assert!(
+        0 < pixels[1] && pixels[1] < pixels[n / 2] && pixels[n / 2] < pixels[n - 1],
+        "{pixels:?}"
+    );
+    let between = num(&sent["area_between_mm2"]);
+    let end = *removed.last().unwrap();
+    assert!(
+        (end - between).abs() < 0.01 * between,
+        "removed {end} mm² at the end, the simulation {between} mm²"
+    );
+    assert_eq!(
+        sent["contours"],
+        sent["steps"].as_object().unwrap().len(),
+        "{sent:#}"
+    );
+    // At each pass's end, what the simulation removed by then.
+    let ends = r["pass_ends"].as_array().unwrap();
+    assert_eq!(ends.len(), 2, "{r:#}");
+    for e in ends {
+        let (shown, simulated) = (num(&e["removed_mm2"]), num(&e["simulated_mm2"]));
+        assert!(
+            (shown - simulated).abs() < 0.01 * simulated,
+            "pass {}: {shown} mm² shown, {simulated} mm² simulated",
+            e["pass"]
+        );
+    }
+
+    // The program line marked is the state's, within the text's box.
+    for seen in r["program"].as_array().unwrap() {
+        assert_eq!(seen["marked_line"], seen["line"], "{seen}");
+        assert_eq!(seen["marked_in_sight"], true, "{seen}");
+        assert!(seen["text"].as_str().unwrap().contains('G'), "{seen}");
+    }
+    let clicked = &r["clicked"];
+    assert!(
+        clicked["state"]["line"].as_u64().unwrap() >= clicked["picked"].as_u64().unwrap(),
+        "{clicked:#}"
+    );
+
+    // Zoom narrows the view and changes pixels; a drag pans it; the
+    // button fits it again.
+    let z = &r["zoom"];
+    let width = |v: &serde_json::Value| num(&v["view"]["x1"]) - num(&v["view"]["x0"]);
+    assert!(width(&z["zoomed"]) < 0.8 * width(&z["fitted"]), "{z:#}");
+    assert_ne!(z["zoomed"]["canvas"]["hash"], z["fitted"]["canvas"]["hash"]);
+    let shift = num(&z["panned"]["view"]["x0"]) - num(&z["zoomed"]["view"]["x0"]);
+    let per_px = width(&z["zoomed"]) / num(&z["width_px"]);
+    assert!((shift + 120.0 * per_px).abs() < 2.0 * per_px, "{z:#}");
+    for k in ["x0", "x1", "y0", "y1"] {
+        let (a, b) = (num(&z["reset"]["view"][k]), num(&z["fitted"]["view"][k]));
+        assert!((a - b).abs() < 1e-9 * a.abs().max(1.0), "{k}: {z:#}");
+    }
+    assert_eq!(z["reset"]["canvas"]["hash"], z["fitted"]["canvas"]["hash"]);
+
+    // The dresser puts the plots' cursor at its Z; hovering a plot at a Z
+    // puts the marker there on the profile (the nearest step's Z, within a
+    // pixel of the plot), drawn at its column; off the plot, none.
+    let c = &r["cursor"];
+    assert_eq!(c["plot_cursor_z"], c["dresser"][1], "{c:#}");
+    assert!(c["plot_row"].is_u64(), "{c:#}");
+    let zs: Vec<f64> = sent["z"].as_array().unwrap().iter().map(num).collect();
+    for h in r["hover"].as_array().unwrap() {
+        let (lo, hi) = (num(&h["plot_z"][0]), num(&h["plot_z"][1]));
+        let want = lo + num(&h["f"]) * (hi - lo);
+        let px = (hi - lo) / num(&h["width_px"]);
+        let nearest = zs
+            .iter()
+            .map(|z| (z - want).abs())
+            .fold(f64::INFINITY, f64::min);
+        let m = &h["marker"];
+        assert!(m.is_object(), "no marker: {h:#}");
+        let at = num(&m["z"]);
+        assert!((at - want).abs() <= nearest + 2.0 * px, "{want} mm: {h:#}");
+        assert_eq!(num(&m["point_a"][0]), at, "{h:#}");
+        assert!(h["marker_px_column"].as_u64().unwrap() > 0, "{h:#}");
+    }
+    assert!(r["hover_off"].is_null(), "{r:#}");
+
+    // Both series, with and without feed control, every step of each pass.
+    let plots = &r["plots"];
+    for (k, n) in sent["steps"].as_object().unwrap() {
+        for label in [
+            format!("with control, pass {k}"),
+            format!("without control, pass {k}"),
+        ] {
+            assert_eq!(plots["mrr"][&label], *n, "{label}: {plots:#}");
+        }
+        assert_eq!(plots["feed"][format!("with control, pass {k}")], *n);
+    }
+    assert_eq!(plots["feed"]["without control"], sent["all_steps"]);
+    let colours = &r["colours"];
+    for k in [
+        "controlled",
+        "uncontrolled",
+        "feed_controlled",
+        "feed_uncontrolled",
+    ] {
+        assert!(colours[k].as_u64().unwrap() > 20, "{k}: {colours:#}");
+    }
+    no_dashes(&r);
+    eprintln!(
+        "dressing: screenshots dressing-open.png, dressing-resumed.png, dressing-forming.png, \
+         dressing-zoom.png, dressing-linked.png, dressing-plots.png in {}",
+        shots.display()
+    );
+}
+
 #[test]
 fn the_browser_maps_every_measured_point_of_a_correction() {
     if !browser_present() {

@@ -92,6 +92,7 @@ pub fn dress_text_with(
         ResultFile::new("mrr.csv", mrr_csv(&d)),
         ResultFile::new("contour_initial.csv", contour_csv(&d.forming.initial)),
         ResultFile::new("contour_final.csv", contour_csv(d.forming.final_contour())),
+        ResultFile::new("contour_passes.csv", contour_passes_csv(&d)),
         ResultFile::new("program.cls", cls),
         ResultFile::new("program.mpf", mpf),
         ResultFile::new("profile.svg", formcam_plot::profile_svg(&name, &d)?),
@@ -187,6 +188,17 @@ fn profile_csv(d: &Dressing) -> Vec<u8> {
 
 fn contour_csv(c: &Contour) -> Vec<u8> {
     zx_csv(c.points())
+}
+
+/// The contour after each pass, pass after pass: `z,x,pass` (1-based).
+fn contour_passes_csv(d: &Dressing) -> Vec<u8> {
+    let mut s = String::from("z,x,pass\n");
+    for (i, c) in d.forming.after_pass.iter().enumerate() {
+        for p in c.points() {
+            let _ = writeln!(s, "{:.9},{:.9},{}", p.x, p.y, i + 1);
+        }
+    }
+    s.into_bytes()
 }
 
 fn dresser_csv(d: &Dressing) -> Vec<u8> {

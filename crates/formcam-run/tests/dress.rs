@@ -118,6 +118,46 @@ fn the_example_writes_consistent_outputs() {
 }
 
 #[test]
+fn the_contour_after_each_pass_ends_with_the_final_contour() {
+    let run = dress(&example_path()).unwrap();
+    let s = summary(&run);
+    let (h, rows) = csv(&text(&run, "contour_passes.csv"));
+    assert_eq!(h, ["z", "x", "pass"]);
+    let pass = col(&h, "pass");
+    let passes: Vec<&str> = rows.iter().map(|r| r[pass].as_str()).collect();
+    assert!(passes.windows(2).all(|w| w[0] <= w[1]), "passes in order");
+    let last = s["passes"].as_array().unwrap().len().to_string();
+    assert_eq!(passes.first(), Some(&"1"));
+    assert_eq!(passes.last(), Some(&last.as_str()));
+    // The last pass's rows are the final contour's, written alike.
+    let (_, fin) = csv(&text(&run, "contour_final.csv"));
+    let after: Vec<&[String]> = rows
+        .iter()
+        .filter(|r| r[pass] == last)
+        .map(|r| &r[..2])
+        .collect();
+    let fin: Vec<&[String]> = fin.iter().map(|r| &r[..]).collect();
+    assert_eq!(after, fin);
+    // The first pass dresses the right half only: its contour is the
+    // initial one left of the apex's neighbourhood.
+    let (_, initial) = csv(&text(&run, "contour_initial.csv"));
+    let first: Vec<&[String]> = rows
+        .iter()
+        .filter(|r| r[pass] == "1")
+        .map(|r| &r[..2])
+        .collect();
+    let left = |c: &[&[String]]| -> Vec<String> {
+        c.iter()
+            .filter(|r| r[0].parse::<f64>().unwrap() < -1.0)
+            .map(|r| r.join(","))
+            .collect()
+    };
+    let initial: Vec<&[String]> = initial.iter().map(|r| &r[..]).collect();
+    assert!(!left(&initial).is_empty());
+    assert_eq!(left(&first), left(&initial));
+}
+
+#[test]
 fn every_table_heads_the_wheel_axes_as_the_program_does() {
     let run = dress(&example_path()).unwrap();
     let cls = text(&run, "program.cls");

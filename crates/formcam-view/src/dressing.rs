@@ -3,10 +3,13 @@
 //! dresser's path per pass, the removal rate and feed per step — and the
 //! program (`program.mpf`) played in its own time, so that the page moves
 //! the dresser along its path (`/api/dressing`, `/api/dressing/sample`).
+//! The contour after each pass (`contour_passes.csv`, formcam-dress's
+//! simulation of forming) and each block's pass let the page show the
+//! contour as cut so far.
 
 use std::path::Path;
 
-use formcam_nc::{AxisSpec, Dialect, read_gcode_lines_in};
+use formcam_nc::{AxisSpec, Dialect, Motion, read_gcode_lines_in};
 use formcam_sim::{FeedRule, Timeline};
 use serde::Serialize;
 use serde_json::{Map, Value};
@@ -34,6 +37,9 @@ pub struct DressingBody {
     pub initial: Vec<[f64; 2]>,
     /// The wheel after dressing (`contour_final.csv`).
     pub final_contour: Vec<[f64; 2]>,
+    /// The wheel after each pass (`contour_passes.csv`), pass after pass;
+    /// empty for a result written without that file.
+    pub contours: Vec<Vec<[f64; 2]>>,
     /// Per pass (`dresser.csv`): point A's path and the dressing corner.
     pub passes: Vec<DresserPass>,
     /// Per step (`mrr.csv`): `z`, removal rate and feed.
@@ -46,6 +52,10 @@ pub struct DressingBody {
     pub points: Vec<[f64; 2]>,
     /// Each block's line in the program (1-based).
     pub lines: Vec<usize>,
+    /// Each block's pass (1-based): the passes are the runs of feed moves
+    /// between rapid moves; a rapid move belongs to the pass before it (0
+    /// before the first).
+    pub block_pass: Vec<usize>,
     /// The program's text.
     pub program: String,
 }
@@ -63,17 +73,28 @@ pub struct DresserPass {
     pub corner_radius: f64,
 }
 
-/// The removal rate and feed per step.
+/// The removal rate and feed per step, with feed control (the program's
+/// feeds) and without (the constant feed of the same time).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct MrrPlot {
     /// The step's pass (1-based).
     pub pass: Vec<usize>,
-    /// Where the step ends along the wheel's axis, mm.
+    /// Where the step ends along the wheel's axis (point A), mm.
     pub z: Vec<f64>,
-    /// Removal rate, mm²/min of the section.
+    /// Point A's radial position at the step's end, mm.
+    pub x: Vec<f64>,
+    /// Removal rate with feed control, mm²/min of the section.
     pub mrr: Vec<f64>,
-    /// Feed, mm/min.
+    /// Feed with feed control, mm/min.
     pub feed: Vec<f64>,
+    /// Removal rate without feed control (at `feed_uncontrolled`), mm²/min.
+    pub mrr_uncontrolled: Vec<f64>,
+    /// The constant feed without feed control, mm/min (the summary's
+    /// `feed_uncontrolled_mm_min`; `None` when it does not say).
+    pub feed_uncontrolled: Option<f64>,
+    /// The removal rate the feeds were planned for, mm²/min (the summary's
+    /// `target_mrr_mm2_min`).
+    pub target: Option<f64>,
 }
 
 /// The dresser at one time.
@@ -108,6 +129,8 @@ impl DressingView {
         let mut t = Vec::with_capacity(timeline.len() + 1);
         let mut points = Vec::with_capacity(timeline.len() + 1);
         let mut lines = Vec::with_capacity(timeline.len());
+        let mut block_pass = Vec::with_capacity(timeline.len());
+        let (mut pass, mut moving) = (0, false);
         for b in timeline.blocks() {
             if b.index == 0 {
                 points.push([b.from[0], b.from[1]]);
@@ -115,23 +138,37 @@ impl DressingView {
             t.push(b.start_s);
             points.push([b.to[0], b.to[1]]);
             lines.push(b.line);
+            let feed = b.kind == Motion::Linear;
+            if feed && !moving {
+                pass += 1;
+            }
+            moving = feed;
+            block_pass.push(pass);
         }
         t.push(timeline.duration_s());
         let body = DressingBody {
             profile: pairs("profile.csv")?,
             initial: pairs("contour_initial.csv")?,
             final_contour: pairs("contour_final.csv")?,
+            contours: contours(root)?,
             passes: passes(&dresser, summary)?,
             mrr: MrrPlot {
                 pass: mrr.numbers("pass")?.iter().map(|p| *p as usize).collect(),
                 z: mrr.numbers("z")?,
+                x: mrr.numbers("x")?,
                 mrr: mrr.numbers("mrr")?,
                 feed: mrr.numbers("feed")?,
+                mrr_uncontrolled: mrr.numbers("mrr_uncontrolled")?,
+                feed_uncontrolled: summary
+                    .get("feed_uncontrolled_mm_min")
+                    .and_then(Value::as_f64),
+                target: summary.get("target_mrr_mm2_min").and_then(Value::as_f64),
             },
             duration_s: timeline.duration_s(),
             t,
             points,
             lines,
+            block_pass,
             program,
         };
         Ok(Self { timeline, body })
@@ -195,6 +232,32 @@ fn program_timeline(text: &str, path: &Path) -> Result<Timeline, ViewError> {
         path: path.to_path_buf(),
         source: Box::new(source),
     })
+}
+
+/// The file of the contours after each pass.
+const CONTOUR_PASSES: &str = "contour_passes.csv";
+
+/// The contour after each pass (`contour_passes.csv`: `z,x,pass`), pass
+/// after pass; none for a result written before that file was.
+fn contours(root: &Path) -> Result<Vec<Vec<[f64; 2]>>, ViewError> {
+    let path = root.join(CONTOUR_PASSES);
+    if !path.exists() {
+        return Ok(Vec::new());
+    }
+    let t = Table::read(&path)?;
+    let (z, x, pass) = (t.numbers("z")?, t.numbers("x")?, t.numbers("pass")?);
+    let mut out: Vec<Vec<[f64; 2]>> = Vec::new();
+    let mut current = None;
+    for i in 0..z.len() {
+        if current != Some(pass[i]) {
+            current = Some(pass[i]);
+            out.push(Vec::new());
+        }
+        if let Some(c) = out.last_mut() {
+            c.push([z[i], x[i]]);
+        }
+    }
+    Ok(out)
 }
 
 fn zip(a: &[f64], b: &[f64]) -> Vec<[f64; 2]> {

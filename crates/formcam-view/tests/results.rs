@@ -18,10 +18,16 @@ fn repo() -> PathBuf {
 
 /// The result of the example job `name`, written into a fresh folder.
 fn result(name: &str) -> PathBuf {
+    result_as(name, name)
+}
+
+/// [`result`] into the folder `folder` (tests running at once of the same
+/// job each write their own).
+fn result_as(name: &str, folder: &str) -> PathBuf {
     let job = repo().join("examples").join(name);
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join("view-results")
-        .join(name);
+        .join(folder);
     let _ = std::fs::remove_dir_all(&dir);
     let run = formcam_run::run_job_file(&job, &dir).unwrap();
     for f in &run.files {
@@ -201,6 +207,141 @@ fn the_dresser_moves_along_the_programs_points_in_its_own_time() {
     }
     assert!(checked > 10, "{checked}");
     assert_eq!(view.answer("/api/dressing/sample?t=x").0, 400);
+}
+
+/// The area under the polyline `c` (`[z, x]`, `z` non-decreasing) above `x = base`.
+fn area_under(c: &Value, base: f64) -> f64 {
+    let p: Vec<(f64, f64)> = c
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|q| (q[0].as_f64().unwrap(), q[1].as_f64().unwrap()))
+        .collect();
+    p.windows(2)
+        .map(|w| 0.5 * (w[1].0 - w[0].0) * (w[0].1 + w[1].1 - 2.0 * base))
+        .sum()
+}
+
+#[test]
+fn the_dressing_sends_each_pass_contour_each_blocks_pass_and_both_feeds() {
+    let dir = result_as("dress-ballscrew-nut.toml", "dress-contours");
+    let view = View::open(&dir, None, Page::default()).unwrap();
+    let d = get(&view, "/api/dressing");
+    let summary: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let passes = summary["passes"].as_array().unwrap().len();
+    assert_eq!(passes, 2);
+
+    // The contour after each pass, the last one the final contour; each
+    // pass removes material, and between the first and the last lies the
+    // area the simulation gives.
+    let contours = d["contours"].as_array().unwrap();
+    assert_eq!(contours.len(), passes);
+    assert_eq!(contours[passes - 1], d["final_contour"]);
+    let sent: usize = contours.iter().map(|c| c.as_array().unwrap().len()).sum();
+    assert_eq!(sent, rows(&dir.join("contour_passes.csv")));
+    let base = -10.0;
+    let mut areas = vec![area_under(&d["initial"], base)];
+    areas.extend(contours.iter().map(|c| area_under(c, base)));
+    assert!(areas.windows(2).all(|w| w[1] < w[0]), "{areas:?}");
+    let between = summary["area_between_contours_mm2"].as_f64().unwrap();
+    let got = areas[0] - areas[passes];
+    assert!((got - between).abs() < 1e-6 * between, "{got} vs {between}");
+
+    // Each block's pass: the runs of feed moves, counted from 1, rapid
+    // moves with the pass before; each pass's first feed move starts at
+    // the pass's first point of `dresser.csv` (to the program's 0.001 mm).
+    let block_pass: Vec<u64> = d["block_pass"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p.as_u64().unwrap())
+        .collect();
+    let t = numbers(&d["t"]);
+    assert_eq!(block_pass.len(), t.len() - 1);
+    assert!(
+        block_pass
+            .windows(2)
+            .all(|w| w[1] == w[0] || w[1] == w[0] + 1)
+    );
+    assert_eq!(block_pass[0], 0, "the program starts with a rapid move");
+    assert_eq!(*block_pass.last().unwrap() as usize, passes);
+    for (p, pass) in d["passes"].as_array().unwrap().iter().enumerate() {
+        let first = (0..block_pass.len())
+            .find(|&b| block_pass[b] == p as u64 + 1)
+            .unwrap();
+        assert!(t[first + 1] > t[first], "pass {}: block {first}", p + 1);
+        let start = &pass["path"][0];
+        let at = &d["points"][first];
+        for c in 0..2 {
+            let (a, b) = (at[c].as_f64().unwrap(), start[c].as_f64().unwrap());
+            assert!((a - b).abs() <= 5e-4, "pass {}: {at} vs {start}", p + 1);
+        }
+    }
+
+    // With feed control and without: the rate at the constant feed of the
+    // same time is each step's area per mm times that feed.
+    let m = &d["mrr"];
+    let f0 = summary["feed_uncontrolled_mm_min"].as_f64().unwrap();
+    assert_eq!(m["feed_uncontrolled"].as_f64(), Some(f0));
+    assert_eq!(m["target"].as_f64(), summary["target_mrr_mm2_min"].as_f64());
+    let table = formcam_view::Table::read(&dir.join("mrr.csv")).unwrap();
+    let per_mm = table.numbers("area_per_mm").unwrap();
+    let free = numbers(&m["mrr_uncontrolled"]);
+    assert_eq!(free.len(), per_mm.len());
+    assert_eq!(numbers(&m["x"]), table.numbers("x").unwrap());
+    for (k, (r, a)) in free.iter().zip(&per_mm).enumerate() {
+        assert!(
+            (r - a * f0).abs() <= 1e-5 + 1e-6 * r.abs(),
+            "step {k}: {r} vs {a} * {f0}"
+        );
+    }
+    // Feed control evens the rate out over the steady steps.
+    let steady = table.numbers("steady").unwrap();
+    let spread = |v: &[f64]| {
+        let s: Vec<f64> = v
+            .iter()
+            .zip(&steady)
+            .filter(|(_, s)| **s > 0.5)
+            .map(|(r, _)| *r)
+            .collect();
+        s.iter().copied().fold(0.0, f64::max) / s.iter().copied().fold(f64::INFINITY, f64::min)
+    };
+    let (with, without) = (spread(&numbers(&m["mrr"])), spread(&free));
+    assert!(with < without, "{with} vs {without}");
+}
+
+#[test]
+fn a_dressing_result_without_the_passes_contours_opens_without_them() {
+    let dir = result_as("dress-ballscrew-nut.toml", "dress-with-passes");
+    let old = dir.with_file_name("dress-without-passes");
+    let _ = std::fs::remove_dir_all(&old);
+    std::fs::create_dir_all(&old).unwrap();
+    for e in std::fs::read_dir(&dir).unwrap() {
+        let e = e.unwrap();
+        if e.file_name() != "contour_passes.csv" {
+            std::fs::copy(e.path(), old.join(e.file_name())).unwrap();
+        }
+    }
+    let with = get(
+        &View::open(&dir, None, Page::default()).unwrap(),
+        "/api/dressing",
+    );
+    let without = get(
+        &View::open(&old, None, Page::default()).unwrap(),
+        "/api/dressing",
+    );
+    assert_eq!(without["contours"], serde_json::json!([]));
+    for k in [
+        "initial",
+        "final_contour",
+        "block_pass",
+        "mrr",
+        "t",
+        "points",
+    ] {
+        assert_eq!(with[k], without[k], "{k}");
+    }
 }
 
 #[test]

@@ -5,7 +5,8 @@
 //! to `formcam machine fk` of the axes it shows; the eye trajectory and the
 //! band laid drawn, the band growing; the follow camera keeping the payout
 //! point centred; and a program that breaks a tightened limit with its
-//! violations listed, marked on the timeline and red on the readouts.
+//! violations listed, marked on the timeline and red on the readouts, the
+//! checks that ran (and why one did not) named above them.
 //! Screenshots go to `target/screenshots/`.
 //!
 //! The browser test says it was skipped without `/usr/bin/chromium`,
@@ -354,6 +355,24 @@ fn the_browser_shows_the_payout_point_formcam_machine_fk_gives() {
         "{v}"
     );
     assert!(v["red_cells"].as_u64().unwrap() >= 1, "{v}");
+    // Above the list, the checks the view ran (its own: the machine was
+    // replaced) and why one did not, as `/api/violations` says.
+    let checks: Vec<&str> = v["checks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c.as_str().unwrap())
+        .collect();
+    assert!(checks.contains(&"axes") && checks.contains(&"collisions"), "{v}");
+    assert_eq!(
+        v["ran"]["checks"],
+        format!("checked: {}", checks.join(", ")),
+        "{v}"
+    );
+    match v["unchecked"].as_str() {
+        Some(why) => assert_eq!(v["ran"]["unchecked"], format!("not checked: {why}"), "{v}"),
+        None => assert!(v["ran"]["unchecked"].is_null(), "{v}"),
+    }
     eprintln!(
         "browser: time to interactive {:.2} s, {:.1} frames/s playing at {}x; screenshots in {}",
         r["tti_s"].as_f64().unwrap(),

@@ -18,7 +18,7 @@ export interface RunRef { name: string; base: string }
 
 /** One plot of the comparison: its series' labels, which are dashed (run
  * B's) and the points each draws. */
-export interface ComparedPlot { title: string; labels: string[]; dashed: boolean[]; points: number[] }
+export interface ComparedPlot { title: string; labels: string[]; colours: string[]; dashed: boolean[]; points: number[] }
 
 /** What the comparison shows, for tests. */
 export interface CompareState {
@@ -177,6 +177,7 @@ function draw(host: HTMLElement, o: Overlay, names: [string, string]): [uPlot, C
   return [u, {
     title: o.title,
     labels: series.slice(1).map((s) => String(s.label)),
+    colours: series.slice(1).map((s) => String(s.stroke)),
     dashed,
     points: counts(u.data as (number | null)[][]),
   }];
@@ -379,7 +380,7 @@ function only(k: number | null): void {
 }
 
 function plotOf(u: uPlot): ComparedPlot {
-  return last?.plots.find((p) => p.title === u.root.dataset.plot) ?? { title: '', labels: [], dashed: [], points: [] };
+  return last?.plots.find((p) => p.title === u.root.dataset.plot) ?? { title: '', labels: [], colours: [], dashed: [], points: [] };
 }
 
 window.formcamCompare = {

@@ -5,8 +5,14 @@
 import * as report from './report';
 
 /** How a URL's answer is obtained: `fetch` from `formcam view`, or the
- * report's inlined data. */
-const answer: (url: string) => Promise<Response> = report.isReport() ? report.answer : (url) => fetch(url);
+ * report's inlined data. Call sites name `/api/...`; fetched relative to
+ * the page (`api/...`), so a result shown at `/runs/<name>/` asks its own. */
+const answer: (url: string) => Promise<Response> = report.isReport() ? report.answer : (url) => fetch(relative(url));
+
+/** `url` relative to the page: its leading `/` taken off. */
+export function relative(url: string): string {
+  return url.replace(/^\/+/, '');
+}
 
 /** What the page is: `formcam view` (served) or `formcam report` (a file). */
 export const PAGE_NAME = report.isReport() ? 'formcam report' : 'formcam view';

@@ -61,17 +61,27 @@ type Scalar = number | string | boolean | null;
 const LIST_ROW = 8;
 
 /** `v` flattened into `out`: `a.b`, `list[2].c`; a short list of plain
- * values one row. */
+ * values one row, a long list one row saying how long (and, for telling
+ * two apart, a digest of its values). */
 export function flatten(v: unknown, key: string, out: Map<string, Scalar | Scalar[]>): void {
   const plain = (x: unknown): x is Scalar => x === null || ['number', 'string', 'boolean'].includes(typeof x);
   if (Array.isArray(v)) {
-    if (v.every(plain)) out.set(key, v.length <= LIST_ROW ? v : `${v.length} values`);
+    if (v.length > LIST_ROW) out.set(key, `${v.length} ${v.every(plain) ? 'values' : 'entries'} (#${digest(v)})`);
+    else if (v.every(plain)) out.set(key, v);
     else v.forEach((x, i) => flatten(x, `${key}[${i}]`, out));
   } else if (v !== null && typeof v === 'object') {
     for (const [k, x] of Object.entries(v)) flatten(x, key ? `${key}.${k}` : k, out);
   } else {
     out.set(key, plain(v) ? v : String(v));
   }
+}
+
+/** A short digest of `v`'s JSON (FNV-1a, hex): equal lists, equal digests. */
+function digest(v: unknown): string {
+  const text = JSON.stringify(v);
+  let h = 0x811c9dc5;
+  for (let i = 0; i < text.length; i++) h = Math.imul(h ^ text.charCodeAt(i), 0x01000193) >>> 0;
+  return h.toString(16).padStart(8, '0');
 }
 
 /** The unit a key's name ends in (`_mm`, `_s`, `_deg`, `_mm_min`, ...), or ''. */
@@ -87,7 +97,7 @@ export function unitOf(key: string): string {
 
 /** A number in few digits. */
 function num(x: number): string {
-  return Number.isFinite(x) ? String(+x.toPrecision(6)) : String(x);
+  return Number.isFinite(x) && !Number.isInteger(x) ? String(+x.toPrecision(6)) : String(x);
 }
 
 /** A value as the table shows it, with its unit. */

@@ -7,6 +7,8 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+pub mod browser;
+
 /// The built `formcam` binary.
 pub fn formcam() -> Command {
     Command::new(env!("CARGO_BIN_EXE_formcam"))

@@ -1,0 +1,186 @@
+//! Two runs of `formcam studio` compared in a real browser (headless
+//! Chromium driven by `viewer/tests/compare.mjs`): a winding job run through
+//! the studio's HTTP API as it is and with its motion tolerance doubled, and
+//! a dressing job. The comparison of the two winding runs lists every
+//! summary value once, marks those that differ (the block count and the
+//! program's time among them, the path's values not), and overlays their
+//! plots, every series of run A solid and of run B dashed in the same
+//! colour, both drawn (their pixels, run B's broken by its dashes); the
+//! winding run against the dressing run shows the table only and says so.
+//! Screenshots go to `target/screenshots/compare-*.png`.
+//!
+//! Skipped as `view.rs`'s browser tests are without Chromium, unless
+//! `FORMCAM_REQUIRE_BROWSER=1`.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+mod common;
+
+use common::browser::{browser_present, driver, serve};
+use common::{repo, s, scratch};
+
+/// The winding job, on the shipped 4-axis winder (the studio reads only in
+/// its folder).
+fn winding_job() -> String {
+    let text = std::fs::read_to_string(repo().join("examples/vessel-program-840d.toml")).unwrap();
+    assert!(text.contains("file = \"../machines/winder-4axis.toml\""));
+    text.replace(
+        "file = \"../machines/winder-4axis.toml\"",
+        "name = \"winder-4axis\"",
+    )
+}
+
+#[test]
+fn the_browser_compares_two_studio_runs_value_by_value_and_plot_over_plot() {
+    if !browser_present() {
+        return;
+    }
+    let dir = scratch("compare");
+    std::fs::write(dir.join("vessel.toml"), winding_job()).unwrap();
+    std::fs::copy(
+        repo().join("examples/dress-ballscrew-nut.toml"),
+        dir.join("nut.toml"),
+    )
+    .unwrap();
+    let studio = serve(&["studio", s(&dir)]);
+    let report = dir.join("compare.json");
+    let shots = repo().join("target/screenshots");
+    let node = driver(
+        "compare.mjs",
+        &[
+            &studio.url,
+            s(&shots),
+            s(&report),
+            "vessel.toml",
+            "motion.tolerance_mm=0.1",
+            "nut.toml",
+        ],
+        &report,
+    );
+    drop(studio);
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap_or_default())
+            .unwrap_or_default();
+    assert!(
+        node.status.success(),
+        "{}\n{r:#}",
+        String::from_utf8_lossy(&node.stderr)
+    );
+    assert_eq!(r["errors"], serde_json::json!([]), "{r:#}");
+    // Three runs, each a folder of its own under DIR/runs/.
+    let runs: Vec<&str> = r["runs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n.as_str().unwrap())
+        .collect();
+    assert_eq!(runs.len(), 3, "{r:#}");
+    for run in &runs {
+        assert!(dir.join("runs").join(run).join("summary.json").is_file(), "{run}");
+    }
+    assert_eq!(r["changed"]["from"], 0.05, "{r:#}");
+
+    // The table: every summary value a row, the differing ones marked.
+    let st = &r["state"];
+    assert_eq!(st["runs"], serde_json::json!(runs[..2]), "{st:#}");
+    assert_eq!(st["same_kind"], true, "{st:#}");
+    let rows = st["rows"].as_u64().unwrap();
+    let differing: Vec<&str> = st["differing_keys"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|k| k.as_str().unwrap())
+        .collect();
+    assert_eq!(r["dom"]["rows"].as_u64().unwrap(), rows, "{r:#}");
+    assert_eq!(
+        r["dom"]["differ"].as_array().unwrap().len(),
+        differing.len(),
+        "{r:#}"
+    );
+    // A coarser tolerance: fewer blocks, another time; the same path.
+    let summary = |run: &str| -> serde_json::Value {
+        serde_json::from_str(
+            &std::fs::read_to_string(dir.join("runs").join(run).join("summary.json")).unwrap(),
+        )
+        .unwrap()
+    };
+    let (a, b) = (summary(runs[0]), summary(runs[1]));
+    assert!(b["blocks"].as_u64().unwrap() < a["blocks"].as_u64().unwrap());
+    for key in ["blocks", "program_time_s"] {
+        assert!(differing.contains(&key), "{key} not marked: {differing:?}");
+    }
+    assert_eq!(a["fibre_length_mm"], b["fibre_length_mm"]);
+    assert!(!differing.contains(&"fibre_length_mm"), "{differing:?}");
+    assert!(
+        (differing.len() as u64) < rows && rows > 20,
+        "{rows} rows, {differing:?}"
+    );
+    // The block count's row: both values and the change with its relative size.
+    let blocks_row = r["dom"]["differ"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|row| row[0] == "blocks")
+        .unwrap();
+    let (na, nb) = (a["blocks"].as_i64().unwrap(), b["blocks"].as_i64().unwrap());
+    assert_eq!(blocks_row[1], na.to_string(), "{blocks_row}");
+    assert_eq!(blocks_row[2], nb.to_string(), "{blocks_row}");
+    let change = blocks_row[3].as_str().unwrap();
+    assert!(
+        change.starts_with(&format!("{} (", nb - na)) && change.ends_with(" %)"),
+        "{change}"
+    );
+
+    // The plots: angle, thickness, pull speed, each axis; each series of
+    // run A solid, run B's dashed in its colour, named after its run.
+    let plots = st["plots"].as_array().unwrap();
+    assert!(plots.len() >= 4, "{st:#}");
+    let mut series = 0;
+    for p in plots {
+        let labels = p["labels"].as_array().unwrap();
+        let dashed = p["dashed"].as_array().unwrap();
+        let colours = p["colours"].as_array().unwrap();
+        let points = p["points"].as_array().unwrap();
+        let n = labels.len();
+        assert!(n >= 2 && n % 2 == 0, "{p}");
+        for k in 0..n / 2 {
+            assert_eq!(dashed[k], false, "{p}");
+            assert_eq!(dashed[n / 2 + k], true, "{p}");
+            assert_eq!(colours[k], colours[n / 2 + k], "{p}");
+            assert!(labels[k].as_str().unwrap().starts_with(runs[0]), "{p}");
+            assert!(labels[n / 2 + k].as_str().unwrap().starts_with(runs[1]), "{p}");
+            assert!(points[k].as_u64().unwrap() > 1, "{p}");
+            assert!(points[n / 2 + k].as_u64().unwrap() > 1, "{p}");
+        }
+        series += n;
+    }
+    assert_eq!(st["series"].as_u64().unwrap(), series as u64);
+    assert_eq!(
+        r["dom"]["canvases"].as_u64().unwrap(),
+        plots.len() as u64,
+        "{r:#}"
+    );
+    // The winding angle of the same path drawn twice: run A's line solid,
+    // run B's dashed over it, fewer pixels for its gaps; both together
+    // about run A's.
+    let px = &r["pixels"];
+    let (pa, pb, both) = (
+        px["a"].as_u64().unwrap(),
+        px["b"].as_u64().unwrap(),
+        px["both"].as_u64().unwrap(),
+    );
+    assert!(pa > 100 && pb > 50, "{px}");
+    assert!(pb < pa * 9 / 10, "the dashed line is not broken: {px}");
+    assert!(20 * both >= 19 * pa, "{px}");
+
+    // Another kind: the table only, saying so.
+    let o = &r["other"];
+    assert_eq!(o["same_kind"], false, "{o:#}");
+    assert_eq!(o["kinds"], serde_json::json!(["winding", "dressing"]), "{o:#}");
+    assert_eq!(o["series"], 0, "{o:#}");
+    assert!(o["rows"].as_u64().unwrap() > 0, "{o:#}");
+    assert_eq!(r["other_dom"]["canvases"], 0, "{r:#}");
+    let note = r["other_dom"]["note"].as_str().unwrap();
+    assert!(note.contains("only their summaries are compared"), "{note}");
+    eprintln!("compare: screenshots in {}", shots.display());
+}

@@ -187,3 +187,15 @@ export async function meshData(n: number): Promise<MeshData> {
   for (let k = 0; k < 3 * nt; k++) indices[k] = v.getUint32(8 + 12 * nv + 4 * k, true);
   return { positions, indices };
 }
+
+/**
+ * A POST of `body` as JSON to `url` (the studio's actions; never in a
+ * report): the answer whatever its status, the caller reads its errors.
+ */
+export async function post(url: string, body: unknown): Promise<Response> {
+  return fetch(relative(url), {
+    method: 'POST',
+    headers: { 'content-type': 'application/json' },
+    body: JSON.stringify(body),
+  });
+}

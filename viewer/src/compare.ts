@@ -6,7 +6,7 @@
 // axes against time; a dressing result's removal rate and feed against Z;
 // a correction's deviation per section and per round (or run). Runs of
 // different kinds: the table only, saying so. The studio's runs list calls
-// `openCompare`; `window.formcamCompare` lets tests open one and read it.
+// `openCompare`; `window.formcamCompare` lets tests read the last one opened.
 import uPlot from 'uplot';
 import './compare.css';
 import { COLOURS, align, chart, counts } from './plots';
@@ -37,11 +37,9 @@ export interface CompareState {
   plots: ComparedPlot[];
 }
 
-/** What tests reach: open a comparison, read it, show one run's series only. */
+/** What tests reach: the comparison shown, and its plots with one run's
+ * series only. */
 export interface CompareProbe {
-  /** Opens the comparison of the runs named (served at `runs/<name>/`) in a
-   * panel of its own over the page. */
-  open(names: string[]): Promise<CompareState>;
   state(): CompareState | null;
   /** Shows only run `k`'s series (0: A, 1: B) on every plot, or all (null). */
   only(k: number | null): void;
@@ -393,16 +391,4 @@ function plotOf(u: uPlot): ComparedPlot {
   return last?.plots.find((p) => p.title === u.root.dataset.plot) ?? { title: '', labels: [], colours: [], dashed: [], points: [] };
 }
 
-window.formcamCompare = {
-  open: async (runNames) => {
-    let host = document.getElementById('compare-probe');
-    if (!host) {
-      host = document.createElement('div');
-      host.id = 'compare-probe';
-      document.body.appendChild(host);
-    }
-    return openCompare(host, runNames.map((name) => ({ name, base: `runs/${encodeURIComponent(name)}/` })));
-  },
-  state: () => last,
-  only,
-};
+window.formcamCompare = { state: () => last, only };

@@ -3,7 +3,8 @@
 // FILE as it is and again with one value changed (`TABLE.FIELD=VALUE`),
 // polling the status until each is done, and, given OTHER, runs that job
 // (of another kind) too; then it opens the page, compares the two winding
-// runs (`window.formcamCompare`) and reads what the comparison shows: the
+// runs (`window.formcamStudio.compare`, as ticking both in the runs list
+// does) and reads what the comparison shows (`window.formcamCompare`): the
 // table's rows and the differing ones, each plot's series, and the pixels
 // of the first plot's colour with only run A's series shown (solid), only
 // run B's (dashed) and both; then the first run against OTHER's (the table
@@ -103,27 +104,27 @@ try {
   page.on('requestfailed', (r) => errors.push(`request failed: ${r.url()}`));
   page.on('request', (r) => { if (!r.url().startsWith(url)) errors.push(`outside request: ${r.url()}`); });
   await page.goto(url);
-  await page.waitForFunction(() => window.formcamCompare !== undefined);
+  await page.evaluate(() => window.formcamStudio.ready);
 
   step = 'compare';
-  report.state = await page.evaluate((names) => window.formcamCompare.open(names), [a, b]);
+  report.state = await page.evaluate((names) => window.formcamStudio.compare(...names), [a, b]);
   await frames(page);
   report.dom = await page.evaluate(() => ({
-    rows: document.querySelectorAll('#compare-probe .summary tbody tr').length,
-    differ: [...document.querySelectorAll('#compare-probe .summary tr.differ')].map((tr) => [...tr.cells].map((td) => td.textContent)),
-    note: document.querySelector('#compare-probe header .note')?.textContent ?? '',
-    canvases: document.querySelectorAll('#compare-probe .plots canvas').length,
-    legend: [...document.querySelectorAll('#compare-probe .plots .cell:first-child .u-legend .u-series th')].map((th) => th.textContent),
+    rows: document.querySelectorAll('#studio .compare .summary tbody tr').length,
+    differ: [...document.querySelectorAll('#studio .compare .summary tr.differ')].map((tr) => [...tr.cells].map((td) => td.textContent)),
+    note: document.querySelector('#studio .compare header .note')?.textContent ?? '',
+    canvases: document.querySelectorAll('#studio .compare .plots canvas').length,
+    legend: [...document.querySelectorAll('#studio .compare .plots .cell:first-child .u-legend .u-series th')].map((th) => th.textContent),
   }));
   await page.screenshot({ path: join(shots, 'compare-winding.png') });
-  await page.evaluate(() => document.querySelector('#compare-probe .plots').scrollIntoView());
+  await page.evaluate(() => document.querySelector('#studio .compare .plots').scrollIntoView());
   await frames(page);
   await page.screenshot({ path: join(shots, 'compare-winding-plots.png') });
 
   // The first plot's first series colour: run A's curve solid, run B's
   // dashed, each alone and both.
   step = 'pixels';
-  const first = '#compare-probe .plots .cell:first-child canvas';
+  const first = '#studio .compare .plots .cell:first-child canvas';
   const hex = report.state.plots[0].colours[0];
   const rgb = [1, 3, 5].map((i) => parseInt(hex.slice(i, i + 2), 16));
   const pixels = {};
@@ -136,11 +137,11 @@ try {
 
   if (c) {
     step = 'other kind';
-    report.other = await page.evaluate((names) => window.formcamCompare.open(names), [a, c]);
+    report.other = await page.evaluate((names) => window.formcamStudio.compare(...names), [a, c]);
     await frames(page);
     report.other_dom = await page.evaluate(() => ({
-      note: document.querySelector('#compare-probe header .note')?.textContent ?? '',
-      canvases: document.querySelectorAll('#compare-probe .plots canvas').length,
+      note: document.querySelector('#studio .compare header .note')?.textContent ?? '',
+      canvases: document.querySelectorAll('#studio .compare .plots canvas').length,
     }));
     await page.screenshot({ path: join(shots, 'compare-kinds.png') });
   }

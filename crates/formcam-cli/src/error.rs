@@ -19,6 +19,9 @@ pub enum CliError {
     /// A result folder cannot be shown (`formcam view`).
     #[error(transparent)]
     View(#[from] formcam_view::ViewError),
+    /// The studio cannot open its folder or listen (`formcam studio`).
+    #[error(transparent)]
+    Studio(#[from] formcam_studio::StudioError),
     /// An input file (a correction job, scenario or report) could not be read.
     #[error("{}: cannot read: {source}", path.display())]
     Read {

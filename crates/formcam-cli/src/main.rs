@@ -9,6 +9,7 @@ mod machine;
 mod output;
 mod progress;
 mod report;
+mod studio;
 mod view;
 mod wind;
 
@@ -143,6 +144,18 @@ enum Command {
         /// The machine file, instead of the one the result's summary names.
         #[arg(long)]
         machine: Option<PathBuf>,
+    },
+    /// Edits, checks, runs and saves jobs in the browser: serves the job
+    /// editor for a folder of job files on 127.0.0.1 and prints the
+    /// address first. Runs are written under the folder's `runs/`.
+    Studio {
+        /// The folder of job files, or a job file (its folder, the job
+        /// opened first); default: the current folder.
+        #[arg(default_value = ".")]
+        path: PathBuf,
+        /// The port on 127.0.0.1 (0: any free one).
+        #[arg(long, default_value_t = 0)]
+        port: u16,
     },
     /// Writes a result's read-only views as one self-contained HTML file
     /// (data and scripts inlined: it opens offline, with no server).
@@ -315,6 +328,7 @@ fn main() -> ExitCode {
             port,
             machine,
         } => view::run(&folder, port, machine),
+        Command::Studio { path, port } => studio::run(&path, port),
         Command::Report {
             folder,
             output,

@@ -80,7 +80,9 @@ pub fn run_job_text(
     run_job_text_with(path, text, kind, out, &Silent)
 }
 
-/// [`run_job_text`] reporting to `progress`.
+/// [`run_job_text`] reporting to `progress`. A TOML job runs from `text`
+/// alone (the files it names relative to `path`'s folder); a `.wind`
+/// document is read from `path`.
 pub fn run_job_text_with(
     path: &Path,
     text: &str,
@@ -92,7 +94,7 @@ pub fn run_job_text_with(
         JobKind::WindFile => {
             crate::wind_file_with(path, out, formcam_program::EYE_CLEARANCE_MM, &[], progress)
         }
-        JobKind::Winding => crate::wind_furthest_with(path, out, progress),
+        JobKind::Winding => crate::wind_furthest_text_with(path, text, out, progress),
         JobKind::Correction => correct_job_with(path, text, out, progress),
         JobKind::Scenario => correct_simulate_with(path, text, out, progress),
         JobKind::Dressing => Ok(dressing_for(

@@ -31,5 +31,5 @@ pub use job::{
 };
 pub use wind::{
     ProgramCheck, wind, wind_checked_with, wind_file, wind_file_checked_with, wind_file_with,
-    wind_furthest, wind_furthest_with, wind_with,
+    wind_furthest, wind_furthest_text_with, wind_furthest_with, wind_with,
 };

@@ -87,7 +87,32 @@ pub fn wind_furthest_with(
     progress: &dyn Progress,
 ) -> Result<RunOutput, RunError> {
     let t0 = Instant::now();
-    let wj = read_job(job)?;
+    let text = read_job_text(job)?;
+    furthest(job, &text, out, t0, progress)
+}
+
+/// [`wind_furthest_with`] for the job `text` the caller holds (an edited
+/// job not yet saved): read as if it were the file at `job`, so the files
+/// it names are found relative to `job`'s folder and the summary names
+/// `job`; the file itself is not read.
+pub fn wind_furthest_text_with(
+    job: &Path,
+    text: &str,
+    out: &Path,
+    progress: &dyn Progress,
+) -> Result<RunOutput, RunError> {
+    furthest(job, text, out, Instant::now(), progress)
+}
+
+/// The job `text` (of the file at `job`) run as far as its tables reach.
+fn furthest(
+    job: &Path,
+    text: &str,
+    out: &Path,
+    t0: Instant,
+    progress: &dyn Progress,
+) -> Result<RunOutput, RunError> {
+    let wj = parse_job(job, text)?;
     let stage = wj.furthest_stage();
     let mut output = run(job, out, &wj, stage, ProgramCheck::On, t0, progress)?;
     output.inputs = job_inputs(job, &wj);
@@ -174,12 +199,22 @@ pub fn wind_file_checked_with(
 
 /// The job at `path`, read.
 fn read_job(path: &Path) -> Result<WindJob, RunError> {
-    let text = formcam_files::read_text(path).map_err(|e| RunError::Read {
+    parse_job(path, &read_job_text(path)?)
+}
+
+/// The text of the job file at `path`.
+fn read_job_text(path: &Path) -> Result<String, RunError> {
+    formcam_files::read_text(path).map_err(|e| RunError::Read {
         path: path.to_path_buf(),
         source: e.into(),
-    })?;
+    })
+}
+
+/// The job `text` of the file at `path`: the files it names relative to
+/// `path`'s folder, named by `path`.
+fn parse_job(path: &Path, text: &str) -> Result<WindJob, RunError> {
     let base = path.parent().unwrap_or(Path::new(""));
-    Ok(WindJob::from_toml(&text, base)
+    Ok(WindJob::from_toml(text, base)
         .map_err(|e| RunError::wind(path, e))?
         .named(path))
 }

@@ -6,6 +6,24 @@
 //! with `formcam view`'s page, and saves the job back (comments and order
 //! kept, the previous version as `.bak`).
 
+mod check;
 mod error;
+mod examples;
+mod kind;
+mod runs;
+mod save;
+mod server;
+mod studio;
+mod values;
 
-pub use error::StudioError;
+pub use check::{FieldError, check_job};
+pub use error::{NameProblem, StudioError, ValuesProblem};
+pub use examples::{Example, example, examples, start_example};
+pub use kind::StudioKind;
+pub use runs::{
+    RUN_FILE, RUN_JOB_FILE, RUNS_FOLDER, RunEntry, RunOrder, RunState, RunStatus, Runs,
+};
+pub use save::{backup_path, job_path, save_job, save_job_with};
+pub use server::StudioServer;
+pub use studio::{Answer, MAX_BODY_BYTES, Studio, StudioMethod};
+pub use values::{apply_values, apply_values_as, values_of};

@@ -51,7 +51,10 @@ pub use report::{
 pub use scene::{
     LinkScene, MERIDIAN_POINTS, MachineScene, MandrelScene, PATH_POINTS, Solid, SolidShape, thin,
 };
-pub use server::{DEFAULT_SAMPLES, MAX_CONNECTIONS, MAX_SAMPLES, View, ViewOptions, ViewServer};
+pub use server::{
+    DEFAULT_SAMPLES, MAX_CONNECTIONS, MAX_SAMPLES, View, ViewOptions, ViewServer, content_type,
+    has_body, head_refusal, refused, reply, serve_router,
+};
 pub use table::Table;
 pub use timeline::{AxisHead, Sample, Timeline, TimelineHead};
 pub use violations::{AxisRange, Violations};

@@ -100,6 +100,12 @@ impl Target {
             .find(|(k, _)| *k == key)
             .map(|(_, v)| v)
     }
+
+    /// The value of `key` in the query, percent-decoded (`None` also for a
+    /// bad escape).
+    pub fn param_decoded(&self, key: &str) -> Option<String> {
+        self.param(key).and_then(decode)
+    }
 }
 
 /// Percent-decoding into UTF-8; `None` for a bad escape or bytes that are
@@ -149,6 +155,9 @@ mod tests {
         assert_eq!(t.segments, ["files", "layer-01", "path a.csv"]);
         assert_eq!(t.param("samples"), Some("20"));
         assert_eq!(t.param("y"), None);
+        let q = Target::parse("/api/studio/job?file=my%20job.toml").unwrap();
+        assert_eq!(q.param_decoded("file").as_deref(), Some("my job.toml"));
+        assert_eq!(Target::parse("/a?file=%zz").unwrap().param_decoded("file"), None);
         assert!(Target::parse("/").unwrap().segments.is_empty());
     }
 

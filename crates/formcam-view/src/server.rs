@@ -414,7 +414,9 @@ fn json<T: Serialize>(v: &T) -> Vec<u8> {
     serde_json::to_vec(v).unwrap_or_default()
 }
 
-fn content_type(path: &Path) -> &'static str {
+/// The content type of a file served, by its extension (plain text for
+/// any other).
+pub fn content_type(path: &Path) -> &'static str {
     match path.extension().and_then(|e| e.to_str()).unwrap_or("") {
         "html" => "text/html; charset=utf-8",
         "js" | "mjs" => "text/javascript; charset=utf-8",
@@ -472,13 +474,10 @@ impl ViewServer {
     /// kept-alive connections. Returns at once only where the system
     /// cannot start the server's runtime (no threads or descriptors left).
     pub fn serve(self) {
-        let Ok(runtime) = tokio::runtime::Builder::new_current_thread()
-            .enable_all()
-            .build()
-        else {
-            return;
-        };
-        runtime.block_on(accept(self.listener, self.view));
+        serve_router(
+            self.listener,
+            Router::new().fallback(answer).with_state(self.view),
+        );
     }
 
     /// Answers requests on a background thread (tests, embedding).
@@ -494,12 +493,29 @@ pub const MAX_CONNECTIONS: usize = 64;
 /// for its next request) before it is closed.
 const IDLE: Duration = Duration::from_secs(60);
 
+/// Answers requests on `listener` with `app` until the process ends, on
+/// the loop [`ViewServer::serve`] runs: a current-thread runtime, every
+/// connection a task of its own (at most [`MAX_CONNECTIONS`] at once),
+/// HTTP/1.1 with kept-alive connections closed after a minute without a
+/// request head. `listener` must be non-blocking. What a request may be
+/// (its head's size, its method, its body) is the router's to refuse:
+/// [`head_refusal`], [`refused`]. Returns at once only where the system
+/// cannot start the runtime.
+pub fn serve_router(listener: TcpListener, app: Router) {
+    let Ok(runtime) = tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+    else {
+        return;
+    };
+    runtime.block_on(accept(listener, app));
+}
+
 /// Accepts connections on `listener` and serves each as a task of its own.
-async fn accept(listener: TcpListener, view: Arc<View>) {
+async fn accept(listener: TcpListener, app: Router) {
     let Ok(listener) = tokio::net::TcpListener::from_std(listener) else {
         return;
     };
-    let app = Router::new().fallback(answer).with_state(view);
     let live = Arc::new(AtomicUsize::new(0));
     loop {
         let stream = match listener.accept().await {
@@ -549,14 +565,7 @@ impl Drop for Live {
 /// blocking thread, since an answer may compute a timeline).
 async fn answer(State(view): State<Arc<View>>, request: Request) -> Response {
     if let Some(r) = refusal(&request) {
-        let mut response = reply(r.status(), TEXT, format!("{r}\n").into_bytes());
-        let headers = response.headers_mut();
-        if r == Refusal::Method {
-            headers.insert(header::ALLOW, HeaderValue::from_static("GET"));
-        }
-        // The refused request's rest is not read: the connection ends.
-        headers.insert(header::CONNECTION, HeaderValue::from_static("close"));
-        return response;
+        return refused(r);
     }
     let url = request.uri().to_string();
     match tokio::task::spawn_blocking(move || view.answer(&url)).await {
@@ -565,34 +574,64 @@ async fn answer(State(view): State<Arc<View>>, request: Request) -> Response {
     }
 }
 
+/// The answer to a refused request: its status and reason, `Allow: GET`
+/// for a method refused, and the connection closed (the request's rest is
+/// not read).
+pub fn refused(r: Refusal) -> Response {
+    let mut response = reply(r.status(), TEXT, format!("{r}\n").into_bytes());
+    let headers = response.headers_mut();
+    if r == Refusal::Method {
+        headers.insert(header::ALLOW, HeaderValue::from_static("GET"));
+    }
+    headers.insert(header::CONNECTION, HeaderValue::from_static("close"));
+    response
+}
+
 /// Why `request` is refused before it is answered, in the order a reader
 /// of its head meets the reasons: the URL, the headers, the method, a body.
 fn refusal(request: &Request) -> Option<Refusal> {
-    let headers = request.headers();
-    let header_bytes: usize = headers
-        .iter()
-        .map(|(name, value)| name.as_str().len() + value.len() + 4)
-        .sum();
-    let length = headers
-        .get(header::CONTENT_LENGTH)
-        .is_some_and(|v| v.as_bytes() != b"0");
-    let body = length || headers.contains_key(header::TRANSFER_ENCODING);
-    if request.uri().to_string().len() > MAX_URL_BYTES {
-        Some(Refusal::UrlTooLong)
-    } else if header_bytes > MAX_HEADER_BYTES {
-        Some(Refusal::HeadersTooLarge)
+    if let Some(r) = head_refusal(request) {
+        Some(r)
     } else if request.method() != Method::GET {
         Some(Refusal::Method)
-    } else if body {
+    } else if has_body(request) {
         Some(Refusal::Body)
     } else {
         None
     }
 }
 
+/// Why any request is refused by its head alone: a URL longer than
+/// [`MAX_URL_BYTES`], headers longer than [`MAX_HEADER_BYTES`].
+pub fn head_refusal(request: &Request) -> Option<Refusal> {
+    let header_bytes: usize = request
+        .headers()
+        .iter()
+        .map(|(name, value)| name.as_str().len() + value.len() + 4)
+        .sum();
+    if request.uri().to_string().len() > MAX_URL_BYTES {
+        Some(Refusal::UrlTooLong)
+    } else if header_bytes > MAX_HEADER_BYTES {
+        Some(Refusal::HeadersTooLarge)
+    } else {
+        None
+    }
+}
+
+/// Whether `request` says it has a body (a length other than 0, or a
+/// transfer encoding).
+pub fn has_body(request: &Request) -> bool {
+    let headers = request.headers();
+    let length = headers
+        .get(header::CONTENT_LENGTH)
+        .is_some_and(|v| v.as_bytes() != b"0");
+    length || headers.contains_key(header::TRANSFER_ENCODING)
+}
+
 /// An answer whole, with its length (hyper writes `Content-Length` for a
-/// body of known size) and the headers every answer has.
-fn reply(status: u16, kind: &'static str, body: Vec<u8>) -> Response {
+/// body of known size) and the headers every answer has: its type,
+/// `Cache-Control: no-store`, `X-Content-Type-Options: nosniff`.
+pub fn reply(status: u16, kind: &'static str, body: Vec<u8>) -> Response {
     let mut response = Response::new(Body::from(body));
     *response.status_mut() =
         StatusCode::from_u16(status).unwrap_or(StatusCode::INTERNAL_SERVER_ERROR);

@@ -165,7 +165,7 @@ function draw(host: HTMLElement, o: Overlay, names: [string, string]): [uPlot, C
   const dashed: boolean[] = [];
   o.curves.forEach((cs, run) => cs.forEach((c) => {
     series.push({
-      label: `${names[run]}: ${c.label}`,
+      label: `${'AB'[run]} ${names[run]}: ${c.label}`,
       stroke: COLOURS[c.colour % COLOURS.length],
       width: 1.5,
       dash: run === 1 ? DASH : undefined,
@@ -341,6 +341,7 @@ export async function openCompare(host: HTMLElement, runs: RunRef[]): Promise<Co
   head.innerHTML = `<strong>Comparing</strong>
     <span class="run-a" title="run A: solid lines">A ${esc(names[0])} <i class="solid"></i></span>
     <span class="run-b" title="run B: dashed lines">B ${esc(names[1])} <i class="dashed"></i></span>
+    <label title="Show only the rows whose values differ"><input type="checkbox" class="only-differ"> differences only</label>
     <span class="note">${same
     ? `${esc(kinds[0])} results: ${differing.length} of ${table.length} values differ`
     : `a ${esc(kinds[0])} and a ${esc(kinds[1])} result: only their summaries are compared (${differing.length} of ${table.length} values differ)`}</span>`;
@@ -351,6 +352,10 @@ export async function openCompare(host: HTMLElement, runs: RunRef[]): Promise<Co
     table.map((r) => `<tr${r.differ ? ' class="differ"' : ''}><td>${esc(r.key)}</td><td>${esc(r.a)}</td><td>${esc(r.b)}</td><td>${esc(r.change)}</td></tr>`).join('')
   }</tbody></table>`;
   host.appendChild(tableBox);
+  head.querySelector<HTMLInputElement>('.only-differ')?.addEventListener('change', (e) => {
+    tableBox.classList.toggle('only-differ', (e.target as HTMLInputElement).checked);
+  });
+  host.classList.toggle('with-plots', same);
   const plotsBox = document.createElement('div');
   plotsBox.className = 'plots';
   host.appendChild(plotsBox);

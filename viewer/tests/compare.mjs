@@ -2,23 +2,24 @@
 // through playwright-core). Through the studio's HTTP API it runs the job
 // FILE as it is and again with one value changed (`TABLE.FIELD=VALUE`),
 // polling the status until each is done, and, given OTHER, runs that job
-// (of another kind) too; then it opens the page, compares the two winding
+// (of another kind) too, and again with its value changed when one is
+// given; then it opens the page, compares the two winding
 // runs (`window.formcamStudio.compare`, as ticking both in the runs list
 // does) and reads what the comparison shows (`window.formcamCompare`): the
 // table's rows and the differing ones, each plot's series, and the pixels
 // of the first plot's colour with only run A's series shown (solid), only
 // run B's (dashed) and both; then the first run against OTHER's (the table
-// only). It writes what it saw as JSON (the Rust test asserts on it) and
+// only), and OTHER's two runs. It writes what it saw as JSON (the Rust test asserts on it) and
 // screenshots.
 //
-//   node viewer/tests/compare.mjs URL SCREENSHOT_DIR OUT_JSON FILE TABLE.FIELD=VALUE [OTHER]
+//   node viewer/tests/compare.mjs URL SCREENSHOT_DIR OUT_JSON FILE TABLE.FIELD=VALUE [OTHER [TABLE.FIELD=VALUE]]
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
 
-const [url, shots, out, file, change, other] = process.argv.slice(2);
+const [url, shots, out, file, change, other, otherChange] = process.argv.slice(2);
 if (!url || !shots || !out || !file || !change?.includes('=')) {
-  console.error('usage: node compare.mjs URL SCREENSHOT_DIR OUT_JSON FILE TABLE.FIELD=VALUE [OTHER]');
+  console.error('usage: node compare.mjs URL SCREENSHOT_DIR OUT_JSON FILE TABLE.FIELD=VALUE [OTHER [TABLE.FIELD=VALUE]]');
   process.exit(2);
 }
 mkdirSync(shots, { recursive: true });
@@ -59,6 +60,15 @@ const run = async (job) => {
   }
 };
 
+/** `job` with `TABLE.FIELD=VALUE` set in its form values. */
+const edited = (job, set) => {
+  const [key, value] = set.split('=');
+  const [table, field] = key.split('.');
+  const values = structuredClone(job.values);
+  values[table] = { ...(values[table] ?? {}), [field]: Number.isNaN(Number(value)) ? value : Number(value) };
+  return { ...job, values };
+};
+
 /** The pixels near `rgb` (channel differences summing to at most 60) on the canvases matching `sel`. */
 const pixelsNear = (page, sel, rgb) => page.evaluate(([s, [r, g, b]]) => {
   let n = 0;
@@ -81,18 +91,21 @@ const browser = await chromium.launch({
 try {
   step = 'runs';
   const job = await api(`api/studio/job?file=${encodeURIComponent(file)}`);
-  const [key, value] = change.split('=');
-  const [table, field] = key.split('.');
-  const changed = structuredClone(job.values);
-  changed[table] = { ...(changed[table] ?? {}), [field]: Number.isNaN(Number(value)) ? value : Number(value) };
   const a = await run(job);
-  const b = await run({ ...job, values: changed });
+  const b = await run(edited(job, change));
   report.runs = [a, b];
-  report.changed = { table, field, from: job.values[table]?.[field] ?? null, to: changed[table][field] };
+  const [table, field] = change.split('=')[0].split('.');
+  report.changed = { table, field, from: job.values[table]?.[field] ?? null, to: edited(job, change).values[table][field] };
   let c = null;
+  let d = null;
   if (other) {
-    c = await run(await api(`api/studio/job?file=${encodeURIComponent(other)}`));
+    const otherJob = await api(`api/studio/job?file=${encodeURIComponent(other)}`);
+    c = await run(otherJob);
     report.runs.push(c);
+    if (otherChange) {
+      d = await run(edited(otherJob, otherChange));
+      report.runs.push(d);
+    }
   }
   report.listed = (await api('api/studio/runs')).map((r) => r.name);
 
@@ -102,6 +115,7 @@ try {
   page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
   page.on('pageerror', (e) => errors.push(`page: ${e}`));
   page.on('requestfailed', (r) => errors.push(`request failed: ${r.url()}`));
+  page.on('response', (r) => { if (r.status() >= 400) errors.push(`${r.status()}: ${r.request().method()} ${r.url()}`); });
   page.on('request', (r) => { if (!r.url().startsWith(url)) errors.push(`outside request: ${r.url()}`); });
   await page.goto(url);
   await page.evaluate(() => window.formcamStudio.ready);
@@ -144,6 +158,13 @@ try {
       canvases: document.querySelectorAll('#studio .compare .plots canvas').length,
     }));
     await page.screenshot({ path: join(shots, 'compare-kinds.png') });
+  }
+  if (d) {
+    step = 'dressing';
+    report.dressing = await page.evaluate((names) => window.formcamStudio.compare(...names), [c, d]);
+    await frames(page);
+    report.dressing_canvases = await page.evaluate(() => document.querySelectorAll('#studio .compare .plots canvas').length);
+    await page.screenshot({ path: join(shots, 'compare-dressing.png') });
   }
 } catch (e) {
   errors.push(`driver: ${e instanceof Error ? e.message : e} (at: ${step})`);

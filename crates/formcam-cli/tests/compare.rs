@@ -6,7 +6,9 @@
 //! program's time among them, the path's values not), and overlays their
 //! plots, every series of run A solid and of run B dashed in the same
 //! colour, both drawn (their pixels, run B's broken by its dashes); the
-//! winding run against the dressing run shows the table only and says so.
+//! winding run against the dressing run shows the table only and says so;
+//! two dressing runs, the feed's limit lowered, their removal rate and feed
+//! overlaid.
 //! Screenshots go to `target/screenshots/compare-*.png`.
 //!
 //! Skipped as `view.rs`'s browser tests are without Chromium, unless
@@ -54,6 +56,7 @@ fn the_browser_compares_two_studio_runs_value_by_value_and_plot_over_plot() {
             "vessel.toml",
             "motion.tolerance_mm=0.1",
             "nut.toml",
+            "process.feed_max=250",
         ],
         &report,
     );
@@ -67,16 +70,19 @@ fn the_browser_compares_two_studio_runs_value_by_value_and_plot_over_plot() {
         String::from_utf8_lossy(&node.stderr)
     );
     assert_eq!(r["errors"], serde_json::json!([]), "{r:#}");
-    // Three runs, each a folder of its own under DIR/runs/.
+    // Four runs, each a folder of its own under DIR/runs/.
     let runs: Vec<&str> = r["runs"]
         .as_array()
         .unwrap()
         .iter()
         .map(|n| n.as_str().unwrap())
         .collect();
-    assert_eq!(runs.len(), 3, "{r:#}");
+    assert_eq!(runs.len(), 4, "{r:#}");
     for run in &runs {
-        assert!(dir.join("runs").join(run).join("summary.json").is_file(), "{run}");
+        assert!(
+            dir.join("runs").join(run).join("summary.json").is_file(),
+            "{run}"
+        );
     }
     assert_eq!(r["changed"]["from"], 0.05, "{r:#}");
 
@@ -131,29 +137,10 @@ fn the_browser_compares_two_studio_runs_value_by_value_and_plot_over_plot() {
         "{change}"
     );
 
-    // The plots: angle, thickness, pull speed, each axis; each series of
-    // run A solid, run B's dashed in its colour, named after its run.
+    // The plots: angle, thickness, pull speed, each axis.
     let plots = st["plots"].as_array().unwrap();
     assert!(plots.len() >= 4, "{st:#}");
-    let mut series = 0;
-    for p in plots {
-        let labels = p["labels"].as_array().unwrap();
-        let dashed = p["dashed"].as_array().unwrap();
-        let colours = p["colours"].as_array().unwrap();
-        let points = p["points"].as_array().unwrap();
-        let n = labels.len();
-        assert!(n >= 2 && n % 2 == 0, "{p}");
-        for k in 0..n / 2 {
-            assert_eq!(dashed[k], false, "{p}");
-            assert_eq!(dashed[n / 2 + k], true, "{p}");
-            assert_eq!(colours[k], colours[n / 2 + k], "{p}");
-            assert!(labels[k].as_str().unwrap().starts_with(runs[0]), "{p}");
-            assert!(labels[n / 2 + k].as_str().unwrap().starts_with(runs[1]), "{p}");
-            assert!(points[k].as_u64().unwrap() > 1, "{p}");
-            assert!(points[n / 2 + k].as_u64().unwrap() > 1, "{p}");
-        }
-        series += n;
-    }
+    let series = overlaid(plots, [runs[0], runs[1]]);
     assert_eq!(st["series"].as_u64().unwrap(), series as u64);
     assert_eq!(
         r["dom"]["canvases"].as_u64().unwrap(),
@@ -176,11 +163,65 @@ fn the_browser_compares_two_studio_runs_value_by_value_and_plot_over_plot() {
     // Another kind: the table only, saying so.
     let o = &r["other"];
     assert_eq!(o["same_kind"], false, "{o:#}");
-    assert_eq!(o["kinds"], serde_json::json!(["winding", "dressing"]), "{o:#}");
+    assert_eq!(
+        o["kinds"],
+        serde_json::json!(["winding", "dressing"]),
+        "{o:#}"
+    );
     assert_eq!(o["series"], 0, "{o:#}");
     assert!(o["rows"].as_u64().unwrap() > 0, "{o:#}");
     assert_eq!(r["other_dom"]["canvases"], 0, "{r:#}");
     let note = r["other_dom"]["note"].as_str().unwrap();
     assert!(note.contains("only their summaries are compared"), "{note}");
+
+    // Two dressing runs, the feed's upper limit lowered: the removal rate
+    // and the feed per pass of both, overlaid.
+    let d = &r["dressing"];
+    assert_eq!(
+        d["kinds"],
+        serde_json::json!(["dressing", "dressing"]),
+        "{d:#}"
+    );
+    let keys: Vec<&str> = d["differing_keys"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|k| k.as_str().unwrap())
+        .collect();
+    assert!(keys.contains(&"feed_limits_mm_min"), "{keys:?}");
+    let plots = d["plots"].as_array().unwrap();
+    assert_eq!(plots.len(), 2, "{d:#}");
+    assert_eq!(
+        d["series"].as_u64().unwrap() as usize,
+        overlaid(plots, [runs[2], runs[3]])
+    );
+    assert_eq!(r["dressing_canvases"], 2, "{r:#}");
     eprintln!("compare: screenshots in {}", shots.display());
+}
+
+/// Checks the plots of a comparison of `runs`: each series of run A solid,
+/// run B's dashed in the same colour, each named after its run, each with
+/// points drawn. The number of series.
+fn overlaid(plots: &[serde_json::Value], runs: [&str; 2]) -> usize {
+    let mut series = 0;
+    for p in plots {
+        let labels = p["labels"].as_array().unwrap();
+        let dashed = p["dashed"].as_array().unwrap();
+        let colours = p["colours"].as_array().unwrap();
+        let points = p["points"].as_array().unwrap();
+        let n = labels.len();
+        assert!(n >= 2 && n % 2 == 0, "{p}");
+        let (la, lb) = (format!("A {}: ", runs[0]), format!("B {}: ", runs[1]));
+        for k in 0..n / 2 {
+            assert_eq!(dashed[k], false, "{p}");
+            assert_eq!(dashed[n / 2 + k], true, "{p}");
+            assert_eq!(colours[k], colours[n / 2 + k], "{p}");
+            assert!(labels[k].as_str().unwrap().starts_with(&la), "{p}");
+            assert!(labels[n / 2 + k].as_str().unwrap().starts_with(&lb), "{p}");
+            assert!(points[k].as_u64().unwrap() > 1, "{p}");
+            assert!(points[n / 2 + k].as_u64().unwrap() > 1, "{p}");
+        }
+        series += n;
+    }
+    series
 }

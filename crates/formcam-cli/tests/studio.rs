@@ -178,7 +178,16 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
     let report = dir.join("studio.json");
     let shots = repo().join("target/screenshots");
     let node = driver(
-        &[&st.url, s(&shots), s(&report), FIELD, FIRST, SECOND, BAD, SLOW],
+        &[
+            &st.url,
+            s(&shots),
+            s(&report),
+            FIELD,
+            FIRST,
+            SECOND,
+            BAD,
+            SLOW,
+        ],
         &report,
     );
     drop(st);
@@ -212,7 +221,10 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
         assert!(jobs.join("runs").join(name).join("summary.json").is_file());
     }
     assert_ne!(r["first_run"], r["second_run"]);
-    assert_eq!(r["after_second"]["runs"][0], r["second_run"], "newest first");
+    assert_eq!(
+        r["after_second"]["runs"][0], r["second_run"],
+        "newest first"
+    );
     assert_ne!(
         comparable(&first["result"]),
         comparable(&second["result"]),
@@ -236,7 +248,10 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
     let bad_job = bad_dir.join("tube.toml");
     std::fs::write(
         &bad_job,
-        JOB.replace("winding_angle_deg = 55.0", &format!("winding_angle_deg = {BAD}")),
+        JOB.replace(
+            "winding_angle_deg = 55.0",
+            &format!("winding_angle_deg = {BAD}"),
+        ),
     )
     .unwrap();
     let cli = formcam()
@@ -354,7 +369,11 @@ fn studio_prints_its_address_first_and_answers_there() {
     if !formcam_view::Page::is_embedded() {
         let o = formcam().args(["studio", s(&dir)]).output().unwrap();
         assert_eq!(o.status.code(), Some(2));
-        assert!(stderr(&o).contains("npm ci && npm run build"), "{}", stderr(&o));
+        assert!(
+            stderr(&o).contains("npm ci && npm run build"),
+            "{}",
+            stderr(&o)
+        );
         return;
     }
     let st = studio(&dir.join("nut.toml"));

@@ -290,7 +290,10 @@ fn the_browser_shows_the_payout_point_formcam_machine_fk_gives() {
         .iter()
         .map(|c| c.as_str().unwrap())
         .collect();
-    assert!(checks.contains(&"axes") && checks.contains(&"collisions"), "{v}");
+    assert!(
+        checks.contains(&"axes") && checks.contains(&"collisions"),
+        "{v}"
+    );
     assert_eq!(
         v["ran"]["checks"],
         format!("checked: {}", checks.join(", ")),

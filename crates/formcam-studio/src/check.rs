@@ -9,9 +9,7 @@
 
 use std::path::{Path, PathBuf};
 
-use formcam_correct::{
-    CorrectError, CorrectionJob, MillingProgram, ScenarioError, ScenarioJob,
-};
+use formcam_correct::{CorrectError, CorrectionJob, MillingProgram, ScenarioError, ScenarioJob};
 use formcam_dress::{DressError, DressJob, Dresser, Point, Profile};
 use formcam_machine::MachineKind;
 use formcam_program::{ProgramError, Stage, WindJob, estimate};
@@ -157,9 +155,9 @@ fn program_place(e: &ProgramError, text: &str) -> (Option<String>, Option<usize>
         ProgramError::SkipTurnMissing { layer } => {
             (Some(format!("layer[{layer}].mandrel_rotation_deg")), None)
         }
-        ProgramError::PostBoth | ProgramError::TemplateRead { .. } | ProgramError::Template { .. } => {
-            field("post.template")
-        }
+        ProgramError::PostBoth
+        | ProgramError::TemplateRead { .. }
+        | ProgramError::Template { .. } => field("post.template"),
         ProgramError::Dialect(_) => field("post.dialect"),
         _ => (None, None),
     }
@@ -285,9 +283,7 @@ fn read_initial(path: &Path) -> Result<Vec<Point>, Refusal> {
 fn correction(path: &Path, text: &str) -> Result<(), Refusal> {
     let base = path.parent().unwrap_or(Path::new("."));
     let job = CorrectionJob::from_toml(text, base).map_err(|e| correct_refusal(path, e))?;
-    job.settings
-        .check()
-        .map_err(|e| correct_refusal(path, e))?;
+    job.settings.check().map_err(|e| correct_refusal(path, e))?;
     formcam_run::read_measurements(&job.measurements)
         .map_err(|e| named(e, path, "correct.measurements"))?;
     let program = formcam_files::read_text(&job.program).map_err(|e| {
@@ -440,7 +436,10 @@ mod tests {
     fn fields_as_the_form_names_them() {
         assert_eq!(form_field("layer[2].kind"), "layer[1].kind");
         assert_eq!(form_field("checks.allow[1]"), "checks.allow");
-        assert_eq!(form_field("winding.mu_segments[1].mu"), "winding.mu_segments");
+        assert_eq!(
+            form_field("winding.mu_segments[1].mu"),
+            "winding.mu_segments"
+        );
         assert_eq!(form_field("[mandrel]"), "mandrel");
         assert_eq!(form_field("[[layer]]"), "layer");
         assert_eq!(form_field("machine.name"), "machine.name");
@@ -462,7 +461,10 @@ mod tests {
     fn a_clean_job_has_no_problem_and_a_bad_one_its_field() {
         let dir = std::env::temp_dir();
         let good = "[mandrel]\nkind = \"cylinder\"\nradius = 50.0\nlength = 300.0\n\n[winding]\nwinding_angle_deg = 45.0\nband_width = 10.0\nband_thickness = 0.5\n";
-        assert_eq!(check_job(StudioKind::Winding, &dir, "a.toml", good), Vec::new());
+        assert_eq!(
+            check_job(StudioKind::Winding, &dir, "a.toml", good),
+            Vec::new()
+        );
         let bad = good.replace("45.0", "95.0");
         let found = check_job(StudioKind::Winding, &dir, "a.toml", &bad);
         assert_eq!(found.len(), 1);

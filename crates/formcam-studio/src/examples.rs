@@ -91,7 +91,11 @@ macro_rules! example {
 /// Every bundled example job, sorted by name.
 static EXAMPLES: [Example; 23] = [
     example!("cone-tube", Winding),
-    example!("correct-mould", Correction, ["correct/cmm.csv", "correct/mould.nc"]),
+    example!(
+        "correct-mould",
+        Correction,
+        ["correct/cmm.csv", "correct/mould.nc"]
+    ),
     example!("correct-panel-loop", Scenario),
     example!("dress-ballscrew-nut", Dressing),
     example!("profile-flare-minimax", Winding, ["flare-meridian.csv"]),

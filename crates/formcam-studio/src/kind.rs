@@ -78,7 +78,11 @@ impl StudioKind {
             Some(StudioKind::Correction)
         } else if formcam_run::is_dress_job(table) {
             Some(StudioKind::Dressing)
-        } else if WINDING_JOB.tables.iter().any(|t| table.contains_key(t.name)) {
+        } else if WINDING_JOB
+            .tables
+            .iter()
+            .any(|t| table.contains_key(t.name))
+        {
             Some(StudioKind::Winding)
         } else {
             None
@@ -109,7 +113,10 @@ mod tests {
     #[test]
     fn kinds_by_their_tables_as_the_run_tells_them() {
         let cases = [
-            ("[surface]\nkind = \"panel\"\n[warp]\n", Some(StudioKind::Scenario)),
+            (
+                "[surface]\nkind = \"panel\"\n[warp]\n",
+                Some(StudioKind::Scenario),
+            ),
             ("[correct]\ngain = 1.0\n", Some(StudioKind::Correction)),
             ("[wheel]\nr1 = 1.0\n", Some(StudioKind::Dressing)),
             ("[mandrel]\nkind = \"vessel\"\n", Some(StudioKind::Winding)),

@@ -213,9 +213,12 @@ impl Runs {
         let name = {
             let mut l = self.shared.latest();
             l.flag.store(true, Ordering::Relaxed);
-            let name = free_name(&self.shared.dir, &run_stamp(SystemTime::now()), &stem, |n| {
-                l.taken.contains(n)
-            });
+            let name = free_name(
+                &self.shared.dir,
+                &run_stamp(SystemTime::now()),
+                &stem,
+                |n| l.taken.contains(n),
+            );
             l.taken.insert(name.clone());
             l.flag = Arc::clone(&flag);
             l.started = Some(Instant::now());
@@ -490,7 +493,10 @@ mod tests {
         std::fs::create_dir_all(runs.join("20260101-000000-a")).unwrap();
         let n = free_name(&dir, "20260101-000000", "a", |n| n.ends_with("-a-2"));
         assert_eq!(n, "20260101-000000-a-3");
-        assert_eq!(free_name(&dir, "20260101-000000", "b", |_| false), "20260101-000000-b");
+        assert_eq!(
+            free_name(&dir, "20260101-000000", "b", |_| false),
+            "20260101-000000-b"
+        );
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

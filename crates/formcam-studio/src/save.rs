@@ -112,8 +112,13 @@ mod tests {
             }
         }
         assert_eq!(
-            job_path(dir, "runs/a.toml").map_err(|e| e.to_string()).err().as_deref(),
-            Some("runs/a.toml: not a job file name: give a plain file name in the studio's folder (no folders, no `..`)")
+            job_path(dir, "runs/a.toml")
+                .map_err(|e| e.to_string())
+                .err()
+                .as_deref(),
+            Some(
+                "runs/a.toml: not a job file name: give a plain file name in the studio's folder (no folders, no `..`)"
+            )
         );
     }
 

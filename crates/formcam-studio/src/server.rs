@@ -108,7 +108,11 @@ async fn post_body(request: Request) -> Result<Vec<u8>, Response> {
         .and_then(|v| v.to_str().ok())
         .is_some_and(|v| v.trim_start().starts_with(JSON));
     if !json {
-        return Err(closing(415, "a POST's body is JSON (application/json)", None));
+        return Err(closing(
+            415,
+            "a POST's body is JSON (application/json)",
+            None,
+        ));
     }
     let too_long = format!("a POST's body is at most {MAX_BODY_BYTES} bytes");
     let declared = headers

@@ -15,8 +15,8 @@ use serde_json::{Value, json};
 
 use crate::runs::{RUNS_FOLDER, RunOrder, Runs};
 use crate::{
-    FieldError, StudioError, StudioKind, apply_values_as, check_job, examples, job_path,
-    save_job, start_example, values_of,
+    FieldError, StudioError, StudioKind, apply_values_as, check_job, examples, job_path, save_job,
+    start_example, values_of,
 };
 
 /// The most bytes of a request's body (the JSON the page posts).
@@ -129,11 +129,9 @@ impl Studio {
                 path: path.to_path_buf(),
             });
         };
-        let dir = folder
-            .canonicalize()
-            .map_err(|_| StudioError::NoFolder {
-                path: folder.clone(),
-            })?;
+        let dir = folder.canonicalize().map_err(|_| StudioError::NoFolder {
+            path: folder.clone(),
+        })?;
         let runs = Runs::start(&dir)?;
         Ok(Self {
             folder,
@@ -381,9 +379,7 @@ impl Studio {
         let view = View::open(&folder, None, self.page.clone())
             .map(Arc::new)
             .map_err(|e| Answer::error(404, e))?;
-        Ok(Arc::clone(
-            lock().entry(name.to_string()).or_insert(view),
-        ))
+        Ok(Arc::clone(lock().entry(name.to_string()).or_insert(view)))
     }
 
     /// A file of the page (`/` is `index.html`).

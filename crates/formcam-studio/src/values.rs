@@ -165,7 +165,10 @@ fn apply_root(
     schema: Option<&JobSchema>,
 ) -> Result<(), StudioError> {
     remove_absent(root, values);
-    for key in ordered_keys(values, schema.map(|s| s.tables.iter().map(|t| t.name).collect())) {
+    for key in ordered_keys(
+        values,
+        schema.map(|s| s.tables.iter().map(|t| t.name).collect()),
+    ) {
         let Some(json) = values.get(&key).filter(|v| !v.is_null()) else {
             continue;
         };
@@ -460,8 +463,8 @@ mod tests {
         assert_eq!(v["mandrel"]["radius"], json!(50.0));
         assert!(v["mandrel"]["length"].is_i64());
         assert_eq!(v["winding"]["band_width"], json!(10.0));
-        let layered = values_of("[[layer]]\nkind = \"hoop\"\n[[layer]]\nkind = \"skip\"\n")
-            .expect("toml");
+        let layered =
+            values_of("[[layer]]\nkind = \"hoop\"\n[[layer]]\nkind = \"skip\"\n").expect("toml");
         assert_eq!(layered["layer"][1]["kind"], json!("skip"));
         let dated = values_of("[a]\nwhen = 1979-05-27T07:32:00Z\nx = nan\n").expect("toml");
         assert_eq!(dated["a"]["when"], json!("1979-05-27T07:32:00Z"));
@@ -493,7 +496,10 @@ mod tests {
         assert!(out.contains("length = 250\n"), "{out}");
         assert!(out.contains("winding_angle_deg = 30.0 # deg\n"), "{out}");
         assert!(out.starts_with("# a job\n[mandrel]\nkind = \"cylinder\"  # the shape\n"));
-        assert_eq!(values_of(&out).expect("toml")["mandrel"]["radius"], json!(60.0));
+        assert_eq!(
+            values_of(&out).expect("toml")["mandrel"]["radius"],
+            json!(60.0)
+        );
     }
 
     #[test]
@@ -501,14 +507,20 @@ mod tests {
         let mut v = values_of(JOB).expect("toml");
         v["winding"]["samples"] = json!(2001);
         v["winding"]["mu"] = json!(0.1);
-        v["mandrel"].as_object_mut().expect("object").remove("length");
+        v["mandrel"]
+            .as_object_mut()
+            .expect("object")
+            .remove("length");
         v["eye"] = json!({"mode": "axis-parallel", "radius": 160});
         let out = apply_values_as(Some(StudioKind::Winding), JOB, &v).expect("applies");
         assert!(!out.contains("length"), "{out}");
         // mu before samples: the description's order.
         let (mu, samples) = (out.find("mu = 0.1"), out.find("samples = 2001"));
         assert!(mu.is_some() && samples.is_some() && mu < samples, "{out}");
-        assert!(out.contains("[eye]\nmode = \"axis-parallel\"\nradius = 160.0\n"), "{out}");
+        assert!(
+            out.contains("[eye]\nmode = \"axis-parallel\"\nradius = 160.0\n"),
+            "{out}"
+        );
         assert!(out.find("[eye]") > out.find("[winding]"), "{out}");
         let mut back = values_of(&out).expect("toml");
         back.as_object_mut().expect("object").remove("eye");
@@ -531,17 +543,28 @@ mod tests {
         let mut fewer = back.clone();
         fewer["layer"].as_array_mut().expect("layers").truncate(1);
         let out = apply_values(&out, &fewer).expect("applies");
-        assert_eq!(values_of(&out).expect("toml")["layer"].as_array().map(Vec::len), Some(1));
+        assert_eq!(
+            values_of(&out).expect("toml")["layer"]
+                .as_array()
+                .map(Vec::len),
+            Some(1)
+        );
         assert!(out.contains("# first\n[[layer]]"), "{out}");
     }
 
     #[test]
     fn values_that_are_no_tables_are_refused_naming_them() {
         let e = apply_values(JOB, &json!({"mandrel": 3})).expect_err("refused");
-        assert_eq!(e.to_string(), "mandrel: a table must be an object of fields");
+        assert_eq!(
+            e.to_string(),
+            "mandrel: a table must be an object of fields"
+        );
         let e = apply_values_as(Some(StudioKind::Winding), JOB, &json!({"layer": [{}, 2]}))
             .expect_err("refused");
-        assert_eq!(e.to_string(), "layer[1]: a table must be an object of fields");
+        assert_eq!(
+            e.to_string(),
+            "layer[1]: a table must be an object of fields"
+        );
         assert!(apply_values(JOB, &json!([1])).is_err());
     }
 }

@@ -122,7 +122,10 @@ fn bad_value(tag: &str, name: &str, field: &str, edit: impl FnOnce(&mut Value)) 
     let e = found.into_iter().next().expect("one");
     assert_eq!(e.field.as_deref(), Some(field), "{e:?}");
     assert_eq!(e.message, formcam_says(&dir, &file, &text));
-    assert!(e.message.starts_with(&dir.join(&file).display().to_string()));
+    assert!(
+        e.message
+            .starts_with(&dir.join(&file).display().to_string())
+    );
     if let Some(line) = e.line {
         assert!(line >= 1 && line <= text.lines().count(), "{e:?}");
     }
@@ -136,8 +139,7 @@ fn winding_a_value_out_of_range_at_its_field() {
         v["winding"]["band_width"] = json!(-10)
     });
     assert!(
-        e.message
-            .contains("winding.band_width = -10.0 at ")
+        e.message.contains("winding.band_width = -10.0 at ")
             && e.message.ends_with("out of range; allowed > 0 mm"),
         "{}",
         e.message
@@ -150,7 +152,11 @@ fn winding_a_layer_named_from_one_in_the_file_and_from_zero_in_the_form() {
     let e = bad_value("w-layer", "vessel-layers-840d", "layer[1].overlap", |v| {
         v["layer"][1]["overlap"] = json!(1.5)
     });
-    assert!(e.message.contains("layer[2].overlap = 1.5"), "{}", e.message);
+    assert!(
+        e.message.contains("layer[2].overlap = 1.5"),
+        "{}",
+        e.message
+    );
 }
 
 #[test]
@@ -209,7 +215,11 @@ fn correction_a_missing_measurement_file_at_its_field() {
     let e = bad_value("c-file", "correct-mould", "correct.measurements", |v| {
         v["correct"]["measurements"] = json!("correct/cmm-2.csv")
     });
-    assert!(e.message.contains("correct.measurements: cannot read"), "{}", e.message);
+    assert!(
+        e.message.contains("correct.measurements: cannot read"),
+        "{}",
+        e.message
+    );
 }
 
 #[test]
@@ -241,7 +251,10 @@ fn saving_keeps_the_previous_version_as_bak() {
     let dir = fresh("save");
     let path = save_job(&dir, "job.toml", "[mandrel]\nkind = \"vessel\"\n").expect("saved");
     assert_eq!(path, dir.join("job.toml"));
-    assert!(!backup_path(&path).exists(), "nothing to back up the first time");
+    assert!(
+        !backup_path(&path).exists(),
+        "nothing to back up the first time"
+    );
     save_job(&dir, "job.toml", "[mandrel]\nkind = \"cone\"\n").expect("saved again");
     assert_eq!(read(&path), "[mandrel]\nkind = \"cone\"\n");
     assert_eq!(

@@ -90,7 +90,10 @@ fn post(addr: SocketAddr, url: &str, body: &Value) -> (u16, Value) {
         )
         .as_bytes(),
     );
-    (status, serde_json::from_slice(&answer).unwrap_or(Value::Null))
+    (
+        status,
+        serde_json::from_slice(&answer).unwrap_or(Value::Null),
+    )
 }
 
 /// The job `file` as the page loads it, ready to post back.
@@ -217,8 +220,7 @@ fn a_run_through_the_server_is_the_saved_job_s_wind() {
     let job = dir.join("vessel.toml");
     assert_eq!(std::fs::read_to_string(&job).unwrap(), ran);
     let wound = formcam_run::wind(&job, &dir.join("out"), formcam_program::Stage::Program).unwrap();
-    let wound: Value =
-        serde_json::from_slice(&wound.file("summary.json").unwrap().bytes).unwrap();
+    let wound: Value = serde_json::from_slice(&wound.file("summary.json").unwrap().bytes).unwrap();
     assert_eq!(values(&summary), values(&wound));
     assert!(summary["program_file"].is_string(), "{summary}");
 
@@ -359,7 +361,11 @@ fn a_job_file_opens_its_folder_with_the_job_chosen() {
     assert_eq!(studio["job"], "vessel.toml");
     assert_eq!(studio["jobs"].as_array().map(Vec::len), Some(2));
     std::fs::write(outer.join("notes.txt"), "no job").unwrap();
-    for bad in [outer.join("notes.txt"), outer.join("missing"), dir.join("winder-4axis.toml")] {
+    for bad in [
+        outer.join("notes.txt"),
+        outer.join("missing"),
+        dir.join("winder-4axis.toml"),
+    ] {
         let err = Studio::open(&bad, Page::none()).unwrap_err();
         assert!(
             err.to_string().contains(&bad.display().to_string()),

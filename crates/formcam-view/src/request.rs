@@ -157,7 +157,10 @@ mod tests {
         assert_eq!(t.param("y"), None);
         let q = Target::parse("/api/studio/job?file=my%20job.toml").unwrap();
         assert_eq!(q.param_decoded("file").as_deref(), Some("my job.toml"));
-        assert_eq!(Target::parse("/a?file=%zz").unwrap().param_decoded("file"), None);
+        assert_eq!(
+            Target::parse("/a?file=%zz").unwrap().param_decoded("file"),
+            None
+        );
         assert!(Target::parse("/").unwrap().segments.is_empty());
     }
 

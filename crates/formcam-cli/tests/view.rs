@@ -360,6 +360,14 @@ fn the_browser_draws_the_winding_plots_with_every_point_the_server_sent() {
     let canvases = r["canvases"].as_array().unwrap();
     assert_eq!(canvases.len(), 8, "{r:#}");
     assert!(canvases.iter().all(drawn), "a flat plot: {r:#}");
+    // The violations of the check `formcam wind` wrote, said so above them.
+    let c = &r["checks"];
+    assert_eq!(c["api"]["source"], "check.json", "{c}");
+    assert_eq!(
+        c["shown"], "checked when the program was written (check.json)",
+        "{c}"
+    );
+    assert!(c["unchecked"].is_null(), "{c}");
 }
 
 #[test]

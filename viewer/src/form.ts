@@ -127,7 +127,7 @@ class FieldInput {
   constructor(public path: string, readonly field: Field, value: unknown, private changed: () => void) {
     this.given = value !== undefined && value !== null;
     this.row = document.createElement('div');
-    this.row.className = 'field';
+    this.row.className = `field kind-${field.kind.type}`;
     this.row.dataset.field = path;
     this.row.title = field.help;
     const label = document.createElement('label');

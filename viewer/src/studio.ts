@@ -60,6 +60,8 @@ export interface StudioState {
   progress: number;
   /** The run whose result the iframe shows. */
   shown: string | null;
+  /** Whether Pause paused the result's animation. */
+  paused: boolean;
   /** Whether the job's text (as last applied) equals the saved file. */
   saved: boolean;
   /** The job's text as last applied. */
@@ -87,7 +89,7 @@ export interface StudioApi {
   /** Reset: the form back to the saved file. */
   reset(): Promise<void>;
   cancel(): Promise<void>;
-  /** Pauses the result's animation. */
+  /** Pauses the result's animation; again: plays it on. */
   pause(): void;
   /** Opens the job file `file` of the folder, or the bundled example `example:NAME`. */
   open(job: string): Promise<void>;
@@ -182,6 +184,7 @@ async function mount(host: HTMLElement): Promise<void> {
   // Runs: the last started, its status; the one shown.
   let status: Status = { run: null, job: null, state: 'idle', phase: null, done: 0, total: 0, elapsed_s: 0, line: null, error: null };
   let shown: string | null = null;
+  let paused = false;
 
   const runs = new RunsList(q('.runs-host'), (name) => void showRun(name), (names) => void compare(names[0], names[1]));
 
@@ -309,6 +312,7 @@ async function mount(host: HTMLElement): Promise<void> {
     frame.hidden = false;
     placeholder.hidden = true;
     shown = name;
+    showPaused(false);
     runs.mark(name);
     const loaded = new Promise<void>((res) => frame.addEventListener('load', () => res(), { once: true }));
     frame.src = `runs/${encodeURIComponent(name)}/`;
@@ -376,9 +380,18 @@ async function mount(host: HTMLElement): Promise<void> {
     showProgress(await postJson<Status>('/api/studio/cancel', {}));
   };
 
-  /** Pauses the result's animation (its own play button plays it again). */
+  /** Pauses the result's animation; pressed again, plays it on. */
   const pause = () => {
-    (frame.contentWindow as (Window & typeof globalThis) | null)?.formcam?.pause();
+    const view = (frame.contentWindow as (Window & typeof globalThis) | null)?.formcam;
+    if (!view || frame.hidden) return;
+    if (paused) view.play();
+    else view.pause();
+    showPaused(!paused);
+  };
+  const showPaused = (p: boolean) => {
+    paused = p;
+    pauseButton.textContent = p ? 'Resume' : 'Pause';
+    pauseButton.title = p ? "Play the result's animation on" : "Pause the result's animation";
   };
 
   const compare = async (a: string, b: string): Promise<CompareState> => {
@@ -434,6 +447,7 @@ async function mount(host: HTMLElement): Promise<void> {
       runState: status.state,
       progress: status.total > 0 ? status.done / status.total : status.state === 'done' ? 1 : 0,
       shown,
+      paused,
       saved: text === savedText,
       text,
       runs: runs.names(),

@@ -142,15 +142,22 @@ try {
   await page.evaluate(() => window.formcamStudio.reset());
   report.reset = await state(page);
 
-  // Pause: the result's animation played, then paused from the studio.
+  // Pause: the result's animation played, paused from the studio, then
+  // played on by the same button.
   step = 'pause';
   const view = resultFrame(page, report.second_run);
+  const time = () => view.evaluate(() => window.formcam.state().time_s);
   await view.evaluate(() => window.formcam.play(1));
   await page.waitForTimeout(400);
   await page.click('#studio button.pause');
-  const paused = await view.evaluate(() => window.formcam.state().time_s);
+  const paused = await time();
+  const pausedState = (await state(page)).paused;
   await page.waitForTimeout(400);
-  report.pause = { paused, later: await view.evaluate(() => window.formcam.state().time_s) };
+  const later = await time();
+  await page.click('#studio button.pause');
+  await page.waitForTimeout(400);
+  report.pause = { paused, pausedState, later, resumed: await time(), label: await page.textContent('#studio button.pause') };
+  await page.click('#studio button.pause');
 
   // Cancel: a run stopped while it goes.
   step = 'cancel';

@@ -1,19 +1,19 @@
-//! `formcam studio DIR`: the job editor in a real browser (headless
-//! Chromium driven by `viewer/tests/studio.mjs`) on a folder holding one
-//! winding job. A field edited and run twice: the run ends done and the
-//! result shown changes (its summary, its plots, its picture); a value out
-//! of range: the error at that field in the words `formcam wind` prints for
-//! the same file, nothing run and the previous result left shown; Save:
-//! the file written (the previous one as `.bak`) and `formcam wind` on it
-//! gives the summary the studio's run gave; Reset back to the saved file;
-//! Pause stops the result's animation; a run cancelled. Screenshots go to
-//! `target/screenshots/studio-*.png`.
+//! `formcam studio [JOB_OR_FOLDER]`: the address printed first and the
+//! studio answering there; a path that is neither a folder nor a job file
+//! fails with exit code 2 and one line naming it. What the studio answers
+//! is tested through the library in `formcam-studio/tests`.
 //!
-//! Without a browser: the address printed first and the studio answering
-//! there; a path that is neither a folder nor a job file fails with exit
-//! code 2 and one line naming it.
-//!
-//! Skipped without `/usr/bin/chromium`, `viewer/node_modules` or a page
+//! And the job editor in a real browser (headless Chromium driven by
+//! `viewer/tests/studio.mjs`) on a folder holding one winding job. A field
+//! edited and run twice: the run ends done and the result shown changes
+//! (its summary, its plots, its picture); a value out of range: the error
+//! at that field in the words `formcam wind` prints for the same file,
+//! nothing run and the previous result left shown; Save: the file written
+//! (the previous one as `.bak`) and `formcam wind` on it gives the summary
+//! the studio's run gave; Reset back to the saved file; Pause stops the
+//! result's animation and, again, plays it on; a run cancelled.
+//! Screenshots go to `target/screenshots/studio-*.png`. The browser test
+//! is skipped without `/usr/bin/chromium`, `viewer/node_modules` or a page
 //! built into the binary, unless `FORMCAM_REQUIRE_BROWSER=1`, when it fails.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
@@ -42,21 +42,86 @@ impl Drop for Running {
     }
 }
 
-/// Starts `formcam studio DIR --port 0` and reads the address it prints first.
-fn studio(dir: &Path) -> Running {
+fn studio(path: &std::path::Path) -> Running {
     let mut child = formcam()
-        .args(["studio", s(dir), "--port", "0"])
+        .args(["studio", s(path), "--port", "0"])
         .stdout(Stdio::piped())
-        .stderr(Stdio::null())
+        .stderr(Stdio::piped())
         .spawn()
         .unwrap();
     let mut first = String::new();
     BufReader::new(child.stdout.take().unwrap())
         .read_line(&mut first)
         .unwrap();
-    let url = first.trim_end().to_string();
-    assert!(url.starts_with("http://127.0.0.1:"), "{url}");
-    Running { child, url }
+    Running {
+        child,
+        url: first.trim_end().to_string(),
+    }
+}
+
+/// A GET of `path`: the status line and the body.
+fn get(url: &str, path: &str) -> (String, String) {
+    let addr = url.trim_start_matches("http://").trim_end_matches('/');
+    let mut c = TcpStream::connect(addr).unwrap();
+    c.write_all(
+        format!("GET {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n").as_bytes(),
+    )
+    .unwrap();
+    let mut out = Vec::new();
+    c.read_to_end(&mut out).unwrap();
+    let text = String::from_utf8_lossy(&out).into_owned();
+    let (head, body) = text.split_once("\r\n\r\n").unwrap_or((&text, ""));
+    (
+        head.lines().next().unwrap_or("").to_string(),
+        body.to_string(),
+    )
+}
+
+#[test]
+fn studio_prints_its_address_first_and_answers_there() {
+    let dir = scratch("studio-serve");
+    std::fs::copy(
+        repo().join("examples/dress-ballscrew-nut.toml"),
+        dir.join("nut.toml"),
+    )
+    .unwrap();
+    if !formcam_view::Page::is_embedded() {
+        let o = formcam().args(["studio", s(&dir)]).output().unwrap();
+        assert_eq!(o.status.code(), Some(2));
+        assert!(
+            stderr(&o).contains("npm ci && npm run build"),
+            "{}",
+            stderr(&o)
+        );
+        return;
+    }
+    let st = studio(&dir.join("nut.toml"));
+    assert!(st.url.starts_with("http://127.0.0.1:"), "{}", st.url);
+    let (status, body) = get(&st.url, "/api/studio");
+    assert!(status.contains(" 200 "), "{status}");
+    let v: serde_json::Value = serde_json::from_str(&body).unwrap();
+    assert_eq!(v["job"], "nut.toml");
+    assert_eq!(v["jobs"][0]["kind"], "dressing");
+    let (status, html) = get(&st.url, "/");
+    assert!(status.contains(" 200 "), "{status}");
+    assert!(html.contains("<script"), "{html}");
+}
+
+#[test]
+fn a_path_that_is_no_folder_nor_job_fails_with_exit_2_naming_it() {
+    let dir = scratch("studio-refused");
+    let notes = dir.join("notes.txt");
+    std::fs::write(&notes, "no job").unwrap();
+    for bad in [dir.join("missing"), notes] {
+        let o = formcam().args(["studio", s(&bad)]).output().unwrap();
+        assert_eq!(o.status.code(), Some(2));
+        assert!(o.stdout.is_empty());
+        let e = stderr(&o);
+        assert_eq!(e.lines().count(), 1, "{e}");
+        if formcam_view::Page::is_embedded() {
+            assert!(e.contains(s(&bad)), "{e}");
+        }
+    }
 }
 
 /// Whether the browser test can run here; fails when it must.
@@ -178,16 +243,7 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
     let report = dir.join("studio.json");
     let shots = repo().join("target/screenshots");
     let node = driver(
-        &[
-            &st.url,
-            s(&shots),
-            s(&report),
-            FIELD,
-            FIRST,
-            SECOND,
-            BAD,
-            SLOW,
-        ],
+        &[&st.url, s(&shots), s(&report), FIELD, FIRST, SECOND, BAD, SLOW],
         &report,
     );
     drop(st);
@@ -221,10 +277,7 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
         assert!(jobs.join("runs").join(name).join("summary.json").is_file());
     }
     assert_ne!(r["first_run"], r["second_run"]);
-    assert_eq!(
-        r["after_second"]["runs"][0], r["second_run"],
-        "newest first"
-    );
+    assert_eq!(r["after_second"]["runs"][0], r["second_run"], "newest first");
     assert_ne!(
         comparable(&first["result"]),
         comparable(&second["result"]),
@@ -248,10 +301,7 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
     let bad_job = bad_dir.join("tube.toml");
     std::fs::write(
         &bad_job,
-        JOB.replace(
-            "winding_angle_deg = 55.0",
-            &format!("winding_angle_deg = {BAD}"),
-        ),
+        JOB.replace("winding_angle_deg = 55.0", &format!("winding_angle_deg = {BAD}")),
     )
     .unwrap();
     let cli = formcam()
@@ -331,76 +381,18 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
         r["pause"]["later"].as_f64().unwrap(),
     );
     assert!(paused > 0.0, "{}", r["pause"]);
+    assert_eq!(r["pause"]["pausedState"], true, "{}", r["pause"]);
     assert_eq!(paused, later, "the animation went on after Pause");
+    assert!(
+        r["pause"]["resumed"].as_f64().unwrap() > later,
+        "Resume did not play on: {}",
+        r["pause"]
+    );
+    assert_eq!(r["pause"]["label"], "Pause", "{}", r["pause"]);
 
     // Cancel: the run stopped, listed as cancelled, the result before it shown.
     let c = &r["after_cancel"];
     assert_eq!(c["run"], r["cancel_run"], "{c:#}");
     assert_eq!(c["runState"], "cancelled", "{c:#}");
     assert_eq!(c["shown"], r["second_run"], "{c:#}");
-}
-
-/// A GET of `path`: the status line and the body.
-fn get(url: &str, path: &str) -> (String, String) {
-    let addr = url.trim_start_matches("http://").trim_end_matches('/');
-    let mut c = TcpStream::connect(addr).unwrap();
-    c.write_all(
-        format!("GET {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n").as_bytes(),
-    )
-    .unwrap();
-    let mut out = Vec::new();
-    c.read_to_end(&mut out).unwrap();
-    let text = String::from_utf8_lossy(&out).into_owned();
-    let (head, body) = text.split_once("\r\n\r\n").unwrap_or((&text, ""));
-    (
-        head.lines().next().unwrap_or("").to_string(),
-        body.to_string(),
-    )
-}
-
-#[test]
-fn studio_prints_its_address_first_and_answers_there() {
-    let dir = scratch("studio-serve");
-    std::fs::copy(
-        repo().join("examples/dress-ballscrew-nut.toml"),
-        dir.join("nut.toml"),
-    )
-    .unwrap();
-    if !formcam_view::Page::is_embedded() {
-        let o = formcam().args(["studio", s(&dir)]).output().unwrap();
-        assert_eq!(o.status.code(), Some(2));
-        assert!(
-            stderr(&o).contains("npm ci && npm run build"),
-            "{}",
-            stderr(&o)
-        );
-        return;
-    }
-    let st = studio(&dir.join("nut.toml"));
-    assert!(st.url.starts_with("http://127.0.0.1:"), "{}", st.url);
-    let (status, body) = get(&st.url, "/api/studio");
-    assert!(status.contains(" 200 "), "{status}");
-    let v: serde_json::Value = serde_json::from_str(&body).unwrap();
-    assert_eq!(v["job"], "nut.toml");
-    assert_eq!(v["jobs"][0]["kind"], "dressing");
-    let (status, html) = get(&st.url, "/");
-    assert!(status.contains(" 200 "), "{status}");
-    assert!(html.contains("<script"), "{html}");
-}
-
-#[test]
-fn a_path_that_is_no_folder_nor_job_fails_with_exit_2_naming_it() {
-    let dir = scratch("studio-refused");
-    let notes = dir.join("notes.txt");
-    std::fs::write(&notes, "no job").unwrap();
-    for bad in [dir.join("missing"), notes] {
-        let o = formcam().args(["studio", s(&bad)]).output().unwrap();
-        assert_eq!(o.status.code(), Some(2));
-        assert!(o.stdout.is_empty());
-        let e = stderr(&o);
-        assert_eq!(e.lines().count(), 1, "{e}");
-        if formcam_view::Page::is_embedded() {
-            assert!(e.contains(s(&bad)), "{e}");
-        }
-    }
 }

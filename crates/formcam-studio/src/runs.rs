@@ -15,7 +15,7 @@ use std::thread;
 use std::time::{Instant, SystemTime, UNIX_EPOCH};
 
 use formcam_progress::{Hook, Step};
-use formcam_run::{JobKind, RunError, RunOutput, run_job_text_with};
+use formcam_run::{RunError, RunOutput, run_job_text_with};
 use serde::Serialize;
 
 use crate::{StudioError, StudioKind};
@@ -377,7 +377,7 @@ fn run_one(shared: &Shared, q: &Queued) -> Result<String, Ended> {
             l.status.total = step.total;
         });
     });
-    let output = run_job_text_with(&job, &q.order.text, job_kind(q.order.kind), &out, &hook)
+    let output = run_job_text_with(&job, &q.order.text, q.order.kind.job_kind(), &out, &hook)
         .map_err(|e| match e {
             e if e.is_cancelled() => Ended::Cancelled,
             e => Ended::Failed(e.to_string()),
@@ -408,16 +408,6 @@ fn write_run(out: &Path, q: &Queued, output: RunOutput) -> Result<String, Ended>
     formcam_files::write_folder(out, &files, &output.inputs)
         .map_err(|e| Ended::Failed(e.to_string()))?;
     Ok(output.line)
-}
-
-/// The run of formcam-run for a studio kind.
-fn job_kind(kind: StudioKind) -> JobKind {
-    match kind {
-        StudioKind::Winding => JobKind::Winding,
-        StudioKind::Dressing => JobKind::Dressing,
-        StudioKind::Correction => JobKind::Correction,
-        StudioKind::Scenario => JobKind::Scenario,
-    }
 }
 
 /// `<stamp>-<stem>`, or with `-2`, `-3`, ... where that name is `taken` or

@@ -18,8 +18,8 @@
 
 mod common;
 
-use common::browser::{browser_present, driver, serve};
-use common::{repo, s, scratch};
+use common::browser::{browser_present, driver};
+use common::{repo, s, scratch, serving};
 
 /// The winding job, on the shipped 4-axis winder (the studio reads only in
 /// its folder).
@@ -44,7 +44,7 @@ fn the_browser_compares_two_studio_runs_value_by_value_and_plot_over_plot() {
         dir.join("nut.toml"),
     )
     .unwrap();
-    let studio = serve(&["studio", s(&dir)]);
+    let studio = serving(&["studio", s(&dir), "--port", "0"]);
     let report = dir.join("compare.json");
     let shots = repo().join("target/screenshots");
     let node = driver(

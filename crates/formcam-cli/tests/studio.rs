@@ -20,61 +20,15 @@
 
 mod common;
 
-use std::io::{BufRead, BufReader, Read, Write};
-use std::net::TcpStream;
 use std::path::Path;
-use std::process::{Child, Command, Output, Stdio};
+use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{formcam, repo, s, scratch, stderr, wind_ok};
+use common::{Running, formcam, get, repo, s, scratch, serving, stderr, wind_ok};
 use serde_json::Value;
 
-/// `formcam studio` running, ended when dropped.
-struct Running {
-    child: Child,
-    url: String,
-}
-
-impl Drop for Running {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
-
 fn studio(path: &std::path::Path) -> Running {
-    let mut child = formcam()
-        .args(["studio", s(path), "--port", "0"])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut first = String::new();
-    BufReader::new(child.stdout.take().unwrap())
-        .read_line(&mut first)
-        .unwrap();
-    Running {
-        child,
-        url: first.trim_end().to_string(),
-    }
-}
-
-/// A GET of `path`: the status line and the body.
-fn get(url: &str, path: &str) -> (String, String) {
-    let addr = url.trim_start_matches("http://").trim_end_matches('/');
-    let mut c = TcpStream::connect(addr).unwrap();
-    c.write_all(
-        format!("GET {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n").as_bytes(),
-    )
-    .unwrap();
-    let mut out = Vec::new();
-    c.read_to_end(&mut out).unwrap();
-    let text = String::from_utf8_lossy(&out).into_owned();
-    let (head, body) = text.split_once("\r\n\r\n").unwrap_or((&text, ""));
-    (
-        head.lines().next().unwrap_or("").to_string(),
-        body.to_string(),
-    )
+    serving(&["studio", s(path), "--port", "0"])
 }
 
 #[test]
@@ -99,11 +53,12 @@ fn studio_prints_its_address_first_and_answers_there() {
     assert!(st.url.starts_with("http://127.0.0.1:"), "{}", st.url);
     let (status, body) = get(&st.url, "/api/studio");
     assert!(status.contains(" 200 "), "{status}");
-    let v: serde_json::Value = serde_json::from_str(&body).unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&body).unwrap();
     assert_eq!(v["job"], "nut.toml");
     assert_eq!(v["jobs"][0]["kind"], "dressing");
     let (status, html) = get(&st.url, "/");
     assert!(status.contains(" 200 "), "{status}");
+    let html = String::from_utf8(html).unwrap();
     assert!(html.contains("<script"), "{html}");
 }
 
@@ -243,7 +198,16 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
     let report = dir.join("studio.json");
     let shots = repo().join("target/screenshots");
     let node = driver(
-        &[&st.url, s(&shots), s(&report), FIELD, FIRST, SECOND, BAD, SLOW],
+        &[
+            &st.url,
+            s(&shots),
+            s(&report),
+            FIELD,
+            FIRST,
+            SECOND,
+            BAD,
+            SLOW,
+        ],
         &report,
     );
     drop(st);
@@ -277,7 +241,10 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
         assert!(jobs.join("runs").join(name).join("summary.json").is_file());
     }
     assert_ne!(r["first_run"], r["second_run"]);
-    assert_eq!(r["after_second"]["runs"][0], r["second_run"], "newest first");
+    assert_eq!(
+        r["after_second"]["runs"][0], r["second_run"],
+        "newest first"
+    );
     assert_ne!(
         comparable(&first["result"]),
         comparable(&second["result"]),
@@ -301,7 +268,10 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
     let bad_job = bad_dir.join("tube.toml");
     std::fs::write(
         &bad_job,
-        JOB.replace("winding_angle_deg = 55.0", &format!("winding_angle_deg = {BAD}")),
+        JOB.replace(
+            "winding_angle_deg = 55.0",
+            &format!("winding_angle_deg = {BAD}"),
+        ),
     )
     .unwrap();
     let cli = formcam()

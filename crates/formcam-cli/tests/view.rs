@@ -19,12 +19,10 @@
 
 mod common;
 
-use std::io::{Read, Write};
-use std::net::TcpStream;
 use std::path::{Path, PathBuf};
 
-use common::browser::{Running, browser_present, driver, serve};
-use common::{formcam, machines, repo, s, scratch, stderr, wind_ok};
+use common::browser::{browser_present, driver};
+use common::{Running, formcam, get, machines, repo, s, scratch, serving, stderr, wind_ok};
 
 /// Starts `formcam view OUT --port 0` and reads the address it prints first.
 fn view(out: &Path) -> Running {
@@ -33,25 +31,9 @@ fn view(out: &Path) -> Running {
 
 /// [`view`] with more arguments.
 fn view_with(out: &Path, more: &[&str]) -> Running {
-    serve(&[&["view", s(out)], more].concat())
-}
-
-/// A GET of `path` on the server at `url`: status line and body.
-fn get(url: &str, path: &str) -> (String, Vec<u8>) {
-    let addr = url.trim_start_matches("http://").trim_end_matches('/');
-    let mut c = TcpStream::connect(addr).unwrap();
-    c.write_all(
-        format!("GET {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n").as_bytes(),
-    )
-    .unwrap();
-    let mut out = Vec::new();
-    c.read_to_end(&mut out).unwrap();
-    let i = out.windows(4).position(|w| w == b"\r\n\r\n").unwrap();
-    let head = String::from_utf8_lossy(&out[..i]).into_owned();
-    (
-        head.lines().next().unwrap_or("").to_string(),
-        out[i + 4..].to_vec(),
-    )
+    let mut args = vec!["view", s(out), "--port", "0"];
+    args.extend_from_slice(more);
+    serving(&args)
 }
 
 /// A winding result on the 4-axis winder.

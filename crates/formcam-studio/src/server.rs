@@ -4,7 +4,7 @@
 //! most [`MAX_BODY_BYTES`]. Each request is answered by [`Studio::answer`]
 //! on a blocking thread (a run's view may take a while to open).
 
-use std::net::{Ipv4Addr, SocketAddr, TcpListener};
+use std::net::SocketAddr;
 use std::sync::Arc;
 use std::thread;
 
@@ -14,16 +14,15 @@ use axum::extract::{Request, State};
 use axum::http::{HeaderValue, Method, header};
 use axum::response::Response;
 use formcam_view::request::Refusal;
-use formcam_view::{has_body, head_refusal, refused, reply, serve_router};
+use formcam_view::{Local, has_body, head_refusal, refused, reply};
 
 use crate::{MAX_BODY_BYTES, Studio, StudioError, StudioMethod};
 
 /// A studio listening on 127.0.0.1.
 #[derive(Debug)]
 pub struct StudioServer {
-    listener: TcpListener,
+    local: Local,
     studio: Arc<Studio>,
-    addr: SocketAddr,
 }
 
 impl StudioServer {
@@ -33,38 +32,39 @@ impl StudioServer {
     ///
     /// [`StudioError::Bind`].
     pub fn bind(studio: Studio, port: u16) -> Result<Self, StudioError> {
-        let bind = |source| StudioError::Bind { port, source };
-        let listener = TcpListener::bind((Ipv4Addr::LOCALHOST, port)).map_err(bind)?;
-        let addr = listener.local_addr().map_err(bind)?;
-        listener.set_nonblocking(true).map_err(bind)?;
+        let local = Local::bind(port).map_err(|source| StudioError::Bind { port, source })?;
         Ok(Self {
-            listener,
+            local,
             studio: Arc::new(studio),
-            addr,
         })
     }
 
     /// `http://127.0.0.1:PORT/`.
     pub fn url(&self) -> String {
-        format!("http://{}/", self.addr)
+        self.local.url()
     }
 
     /// The address it listens on.
     pub fn addr(&self) -> SocketAddr {
-        self.addr
+        self.local.addr()
     }
 
     /// Answers requests until the process ends.
     pub fn serve(self) {
-        serve_router(
-            self.listener,
-            Router::new().fallback(answer).with_state(self.studio),
-        );
+        let app = self.router();
+        self.local.serve(app);
     }
 
     /// Answers requests on a background thread (tests, embedding).
     pub fn spawn(self) -> thread::JoinHandle<()> {
-        thread::spawn(move || self.serve())
+        let app = self.router();
+        self.local.spawn(app)
+    }
+
+    fn router(&self) -> Router {
+        Router::new()
+            .fallback(answer)
+            .with_state(Arc::clone(&self.studio))
     }
 }
 
@@ -100,8 +100,12 @@ async fn answer(State(studio): State<Arc<Studio>>, request: Request) -> Response
     response
 }
 
-/// A POST's body: JSON, at most [`MAX_BODY_BYTES`].
+/// A POST's body: JSON, at most [`MAX_BODY_BYTES`]; none for a POST that
+/// sends none (cancel).
 async fn post_body(request: Request) -> Result<Vec<u8>, Response> {
+    if !has_body(&request) {
+        return Ok(Vec::new());
+    }
     let headers = request.headers();
     let json = headers
         .get(header::CONTENT_TYPE)

@@ -52,8 +52,8 @@ pub use scene::{
     LinkScene, MERIDIAN_POINTS, MachineScene, MandrelScene, PATH_POINTS, Solid, SolidShape, thin,
 };
 pub use server::{
-    DEFAULT_SAMPLES, MAX_CONNECTIONS, MAX_SAMPLES, View, ViewOptions, ViewServer, content_type,
-    has_body, head_refusal, refused, reply, serve_router,
+    DEFAULT_SAMPLES, Local, MAX_CONNECTIONS, MAX_SAMPLES, View, ViewOptions, ViewServer,
+    content_type, has_body, head_refusal, refused, reply, serve_router,
 };
 pub use table::Table;
 pub use timeline::{AxisHead, Sample, Timeline, TimelineHead};

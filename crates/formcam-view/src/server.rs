@@ -430,33 +430,24 @@ pub fn content_type(path: &Path) -> &'static str {
     }
 }
 
-/// A view listening on 127.0.0.1.
-pub struct ViewServer {
+/// A socket listening on 127.0.0.1, non-blocking, for [`serve_router`].
+#[derive(Debug)]
+pub struct Local {
     listener: TcpListener,
-    view: Arc<View>,
     addr: SocketAddr,
 }
 
-impl ViewServer {
-    /// Reads the result folder and listens on `127.0.0.1:port`.
+impl Local {
+    /// Listens on `127.0.0.1:port` (0: any free port).
     ///
     /// # Errors
     ///
-    /// The result's [`ViewError`], or [`ViewError::Bind`].
-    pub fn bind(root: &Path, options: &ViewOptions, page: Page) -> Result<Self, ViewError> {
-        let view = View::open(root, options.machine.as_deref(), page)?;
-        let bind = |source| ViewError::Bind {
-            port: options.port,
-            source,
-        };
-        let listener = TcpListener::bind((Ipv4Addr::LOCALHOST, options.port)).map_err(bind)?;
-        let addr = listener.local_addr().map_err(bind)?;
-        listener.set_nonblocking(true).map_err(bind)?;
-        Ok(Self {
-            listener,
-            view: Arc::new(view),
-            addr,
-        })
+    /// The system's, when the port cannot be listened on.
+    pub fn bind(port: u16) -> std::io::Result<Self> {
+        let listener = TcpListener::bind((Ipv4Addr::LOCALHOST, port))?;
+        let addr = listener.local_addr()?;
+        listener.set_nonblocking(true)?;
+        Ok(Self { listener, addr })
     }
 
     /// `http://127.0.0.1:PORT/`.
@@ -469,15 +460,59 @@ impl ViewServer {
         self.addr
     }
 
+    /// Answers requests with `app` until the process ends (see
+    /// [`serve_router`]).
+    pub fn serve(self, app: Router) {
+        serve_router(self.listener, app);
+    }
+
+    /// [`Local::serve`] on a background thread (tests, embedding).
+    pub fn spawn(self, app: Router) -> thread::JoinHandle<()> {
+        thread::spawn(move || self.serve(app))
+    }
+}
+
+/// A view listening on 127.0.0.1.
+pub struct ViewServer {
+    local: Local,
+    view: Arc<View>,
+}
+
+impl ViewServer {
+    /// Reads the result folder and listens on `127.0.0.1:port`.
+    ///
+    /// # Errors
+    ///
+    /// The result's [`ViewError`], or [`ViewError::Bind`].
+    pub fn bind(root: &Path, options: &ViewOptions, page: Page) -> Result<Self, ViewError> {
+        let view = View::open(root, options.machine.as_deref(), page)?;
+        let local = Local::bind(options.port).map_err(|source| ViewError::Bind {
+            port: options.port,
+            source,
+        })?;
+        Ok(Self {
+            local,
+            view: Arc::new(view),
+        })
+    }
+
+    /// `http://127.0.0.1:PORT/`.
+    pub fn url(&self) -> String {
+        self.local.url()
+    }
+
+    /// The address it listens on.
+    pub fn addr(&self) -> SocketAddr {
+        self.local.addr()
+    }
+
     /// Answers requests until the process ends: every connection served
     /// on its own (at most [`MAX_CONNECTIONS`] at once), HTTP/1.1 with
     /// kept-alive connections. Returns at once only where the system
     /// cannot start the server's runtime (no threads or descriptors left).
     pub fn serve(self) {
-        serve_router(
-            self.listener,
-            Router::new().fallback(answer).with_state(self.view),
-        );
+        self.local
+            .serve(Router::new().fallback(answer).with_state(self.view));
     }
 
     /// Answers requests on a background thread (tests, embedding).

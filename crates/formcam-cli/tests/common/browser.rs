@@ -1,45 +1,12 @@
-//! What the browser tests share: a server (`formcam view`, `formcam
-//! studio`) started on a free port with the address it prints first read,
-//! whether the browser test can run here, and the browser driver
-//! (`viewer/tests/SCRIPT` under node) run with a time limit.
+//! What the browser tests share: whether the browser test can run here,
+//! and the browser driver (`viewer/tests/SCRIPT` under node) run with a
+//! time limit.
 
-use std::io::{BufRead, BufReader};
 use std::path::Path;
-use std::process::{Child, Command, Output, Stdio};
+use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use super::{formcam, repo};
-
-/// A `formcam` server running, ended when dropped.
-pub struct Running {
-    child: Child,
-    /// The page's address, as printed first (`http://127.0.0.1:PORT/`).
-    pub url: String,
-}
-
-impl Drop for Running {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
-
-/// Starts `formcam ARGS --port 0` and reads the address it prints first.
-pub fn serve(args: &[&str]) -> Running {
-    let mut child = formcam()
-        .args(args)
-        .args(["--port", "0"])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut first = String::new();
-    BufReader::new(child.stdout.take().unwrap())
-        .read_line(&mut first)
-        .unwrap();
-    let url = first.trim_end().to_string();
-    Running { child, url }
-}
+use super::repo;
 
 /// Whether the browser test can run here; fails when it must.
 pub fn browser_present() -> bool {

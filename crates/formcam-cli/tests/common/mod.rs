@@ -4,8 +4,10 @@
 
 #![allow(dead_code, clippy::unwrap_used, clippy::expect_used)]
 
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::{Child, Command, Output, Stdio};
 
 pub mod browser;
 
@@ -151,4 +153,53 @@ pub fn names_in(dir: &Path) -> Vec<String> {
         .collect();
     names.sort();
     names
+}
+
+/// A serving command (`formcam view`, `formcam studio`), ended when dropped.
+pub struct Running {
+    /// The process.
+    pub child: Child,
+    /// The address it printed first.
+    pub url: String,
+}
+
+impl Drop for Running {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Starts `formcam ARGS` and reads the address it prints first.
+pub fn serving(args: &[&str]) -> Running {
+    let mut child = formcam()
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap();
+    let url = first.trim_end().to_string();
+    Running { child, url }
+}
+
+/// A GET of `path` on the server at `url`: status line and body.
+pub fn get(url: &str, path: &str) -> (String, Vec<u8>) {
+    let addr = url.trim_start_matches("http://").trim_end_matches('/');
+    let mut c = TcpStream::connect(addr).unwrap();
+    c.write_all(
+        format!("GET {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n").as_bytes(),
+    )
+    .unwrap();
+    let mut out = Vec::new();
+    c.read_to_end(&mut out).unwrap();
+    let i = out.windows(4).position(|w| w == b"\r\n\r\n").unwrap();
+    let head = String::from_utf8_lossy(&out[..i]).into_owned();
+    (
+        head.lines().next().unwrap_or("").to_string(),
+        out[i + 4..].to_vec(),
+    )
 }

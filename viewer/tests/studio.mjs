@@ -110,6 +110,22 @@ try {
   report.second = await shownResult(page, report.second_run);
   await page.screenshot({ path: join(shots, 'studio-run.png') });
 
+  // The two runs ticked in the list and compared side by side, then back.
+  step = 'compare';
+  for (const name of [report.first_run, report.second_run]) {
+    await page.check(`#studio li[data-run="${name}"] input[type=checkbox]`);
+  }
+  await page.click('#studio button.compare');
+  await page.waitForTimeout(500);
+  report.compare = {
+    selected: (await state(page)).selected,
+    shown: await page.evaluate(() => !document.querySelector('#studio .compare-host').hidden),
+    frame_hidden: await page.evaluate(() => document.querySelector('#studio iframe.result-frame').hidden),
+  };
+  await page.screenshot({ path: join(shots, 'studio-compare.png') });
+  await page.click('#studio button.back');
+  report.compare.back = await page.evaluate(() => !document.querySelector('#studio iframe.result-frame').hidden);
+
   // Out of range: the error at the field in the CLI's words; Enter in the
   // field applies; nothing runs and the second result stays.
   step = 'bad value';

@@ -10,7 +10,8 @@
 //! at that field in the words `formcam wind` prints for the same file,
 //! nothing run and the previous result left shown; Save: the file written
 //! (the previous one as `.bak`) and `formcam wind` on it gives the summary
-//! the studio's run gave; Reset back to the saved file; Pause stops the
+//! the studio's run gave; two runs ticked and compared side by side;
+//! Reset back to the saved file; Pause stops the
 //! result's animation and, again, plays it on; a run cancelled.
 //! Screenshots go to `target/screenshots/studio-*.png`. The browser test
 //! is skipped without `/usr/bin/chromium`, `viewer/node_modules` or a page
@@ -165,12 +166,12 @@ dialect = \"sinumerik-840d\"
 const FIELD: &str = "winding.winding_angle_deg";
 const FIRST: &str = "50";
 const SECOND: &str = "65";
-const BAD: &str = "95";
+const BAD: &str = "95.0";
 /// The fields set for the run cancelled: one that takes seconds.
 const SLOW: &str = "winding.band_width=0.5;mandrel.length=1000";
 
 /// A summary without what differs between two runs of the same job: the
-/// job's path (nothing measured goes into a summary).
+/// job's path (nothing measured goes into a summary); numbers as floats.
 fn comparable(v: &Value) -> Value {
     match v {
         Value::Object(m) => Value::Object(
@@ -180,6 +181,8 @@ fn comparable(v: &Value) -> Value {
                 .collect(),
         ),
         Value::Array(a) => Value::Array(a.iter().map(comparable).collect()),
+        // Passed through the page, `0.0` comes back as `0`.
+        Value::Number(n) => serde_json::json!(n.as_f64()),
         other => other.clone(),
     }
 }
@@ -262,18 +265,28 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
     assert!(first["scene"][0]["colours"].as_u64().unwrap() > 10);
     assert_ne!(hashes(&first["scene"]), hashes(&second["scene"]));
 
-    // The value out of range: refused at its field in the CLI's words.
+    // The two runs ticked and compared in place of the result, then back.
+    let c = &r["compare"];
+    assert_eq!(
+        c["selected"],
+        serde_json::json!([r["first_run"], r["second_run"]]),
+        "{c}"
+    );
+    assert_eq!(c["shown"], true, "{c}");
+    assert_eq!(c["frame_hidden"], true, "{c}");
+    assert_eq!(c["back"], true, "{c}");
+
+    // The value out of range: refused at its field in the CLI's words, those
+    // `formcam wind` prints for the text the studio checked (the file named
+    // as given there: in the studio's folder, here beside it).
     let bad_dir = dir.join("bad");
     std::fs::create_dir_all(&bad_dir).unwrap();
-    let bad_job = bad_dir.join("tube.toml");
-    std::fs::write(
-        &bad_job,
-        JOB.replace(
-            "winding_angle_deg = 55.0",
-            &format!("winding_angle_deg = {BAD}"),
-        ),
-    )
-    .unwrap();
+    let bad_text = r["bad_state"]["text"].as_str().unwrap();
+    assert!(
+        bad_text.contains(&format!("winding_angle_deg = {BAD}")),
+        "{bad_text}"
+    );
+    std::fs::write(bad_dir.join("tube.toml"), bad_text).unwrap();
     let cli = formcam()
         .current_dir(&bad_dir)
         .args(["wind", "tube.toml", "-o", "out"])
@@ -281,8 +294,12 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
         .unwrap();
     assert_eq!(cli.status.code(), Some(2), "{}", stderr(&cli));
     let message = r["bad_state"]["errors"][FIELD].as_str().unwrap();
+    let words = message
+        .strip_prefix(&format!("{}/", jobs.display()))
+        .unwrap_or(message);
+    assert!(words.starts_with("tube.toml: "), "{message}");
     assert!(
-        stderr(&cli).contains(message),
+        stderr(&cli).contains(words),
         "the studio says {message:?}, formcam wind says {:?}",
         stderr(&cli)
     );

@@ -347,7 +347,7 @@ export async function openCompare(host: HTMLElement, runs: RunRef[]): Promise<Co
     : `a ${esc(kinds[0])} and a ${esc(kinds[1])} result: only their summaries are compared (${differing.length} of ${table.length} values differ)`}</span>`;
   host.appendChild(head);
   const tableBox = document.createElement('div');
-  tableBox.className = 'summary';
+  tableBox.className = 'values';
   tableBox.innerHTML = `<table><thead><tr><th>value</th><th>A</th><th>B</th><th>change B − A</th></tr></thead><tbody>${
     table.map((r) => `<tr${r.differ ? ' class="differ"' : ''}><td>${esc(r.key)}</td><td>${esc(r.a)}</td><td>${esc(r.b)}</td><td>${esc(r.change)}</td></tr>`).join('')
   }</tbody></table>`;

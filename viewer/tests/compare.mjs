@@ -124,13 +124,19 @@ try {
   report.state = await page.evaluate((names) => window.formcamStudio.compare(...names), [a, b]);
   await frames(page);
   report.dom = await page.evaluate(() => ({
-    rows: document.querySelectorAll('#studio .compare .summary tbody tr').length,
-    differ: [...document.querySelectorAll('#studio .compare .summary tr.differ')].map((tr) => [...tr.cells].map((td) => td.textContent)),
+    rows: document.querySelectorAll('#studio .compare .values tbody tr').length,
+    differ: [...document.querySelectorAll('#studio .compare .values tr.differ')].map((tr) => [...tr.cells].map((td) => td.textContent)),
     note: document.querySelector('#studio .compare header .note')?.textContent ?? '',
     canvases: document.querySelectorAll('#studio .compare .plots canvas').length,
     legend: [...document.querySelectorAll('#studio .compare .plots .cell:first-child .u-legend .u-series th')].map((th) => th.textContent),
   }));
   await page.screenshot({ path: join(shots, 'compare-winding.png') });
+  // Only the differing rows, as the box shows them.
+  await page.click('#studio .compare header .only-differ');
+  report.dom.visible_rows = await page.evaluate(() => [...document.querySelectorAll('#studio .compare .values tbody tr')]
+    .filter((tr) => tr.getClientRects().length > 0).length);
+  await page.screenshot({ path: join(shots, 'compare-differences.png') });
+  await page.click('#studio .compare header .only-differ');
   await page.evaluate(() => document.querySelector('#studio .compare .plots').scrollIntoView());
   await frames(page);
   await page.screenshot({ path: join(shots, 'compare-winding-plots.png') });

@@ -103,6 +103,12 @@ fn the_browser_compares_two_studio_runs_value_by_value_and_plot_over_plot() {
         differing.len(),
         "{r:#}"
     );
+    // Ticking "differences only" leaves those rows alone shown.
+    assert_eq!(
+        r["dom"]["visible_rows"].as_u64().unwrap() as usize,
+        differing.len(),
+        "{r:#}"
+    );
     // A coarser tolerance: fewer blocks, another time; the same path.
     let summary = |run: &str| -> serde_json::Value {
         serde_json::from_str(

@@ -9,17 +9,19 @@
 // table's rows and the differing ones, each plot's series, and the pixels
 // of the first plot's colour with only run A's series shown (solid), only
 // run B's (dashed) and both; then the first run against OTHER's (the table
-// only), and OTHER's two runs. It writes what it saw as JSON (the Rust test asserts on it) and
+// only), OTHER's two runs, and THIRD's two (a third kind) when given. It
+// writes what it saw as JSON (the Rust test asserts on it) and
 // screenshots.
 //
-//   node viewer/tests/compare.mjs URL SCREENSHOT_DIR OUT_JSON FILE TABLE.FIELD=VALUE [OTHER [TABLE.FIELD=VALUE]]
+//   node viewer/tests/compare.mjs URL SCREENSHOT_DIR OUT_JSON FILE TABLE.FIELD=VALUE
+//     [OTHER [TABLE.FIELD=VALUE [THIRD TABLE.FIELD=VALUE]]]
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
 
-const [url, shots, out, file, change, other, otherChange] = process.argv.slice(2);
+const [url, shots, out, file, change, other, otherChange, third, thirdChange] = process.argv.slice(2);
 if (!url || !shots || !out || !file || !change?.includes('=')) {
-  console.error('usage: node compare.mjs URL SCREENSHOT_DIR OUT_JSON FILE TABLE.FIELD=VALUE [OTHER [TABLE.FIELD=VALUE]]');
+  console.error('usage: node compare.mjs URL SCREENSHOT_DIR OUT_JSON FILE TABLE.FIELD=VALUE [OTHER [TABLE.FIELD=VALUE [THIRD TABLE.FIELD=VALUE]]]');
   process.exit(2);
 }
 mkdirSync(shots, { recursive: true });
@@ -107,6 +109,12 @@ try {
       report.runs.push(d);
     }
   }
+  const pair = [];
+  if (third && thirdChange) {
+    const thirdJob = await api(`api/studio/job?file=${encodeURIComponent(third)}`);
+    pair.push(await run(thirdJob), await run(edited(thirdJob, thirdChange)));
+    report.runs.push(...pair);
+  }
   report.listed = (await api('api/studio/runs')).map((r) => r.name);
 
   step = 'open';
@@ -118,6 +126,8 @@ try {
   page.on('response', (r) => { if (r.status() >= 400) errors.push(`${r.status()}: ${r.request().method()} ${r.url()}`); });
   page.on('request', (r) => { if (!r.url().startsWith(url)) errors.push(`outside request: ${r.url()}`); });
   await page.goto(url);
+  // Set once the page knows it is the studio's (`api/kind`).
+  await page.waitForFunction(() => window.formcamStudio !== undefined);
   await page.evaluate(() => window.formcamStudio.ready);
 
   step = 'compare';
@@ -171,6 +181,13 @@ try {
     await frames(page);
     report.dressing_canvases = await page.evaluate(() => document.querySelectorAll('#studio .compare .plots canvas').length);
     await page.screenshot({ path: join(shots, 'compare-dressing.png') });
+  }
+  if (pair.length === 2) {
+    step = 'third kind';
+    report.third = await page.evaluate((names) => window.formcamStudio.compare(...names), pair);
+    await frames(page);
+    report.third_canvases = await page.evaluate(() => document.querySelectorAll('#studio .compare .plots canvas').length);
+    await page.screenshot({ path: join(shots, 'compare-correction.png') });
   }
 } catch (e) {
   errors.push(`driver: ${e instanceof Error ? e.message : e} (at: ${step})`);

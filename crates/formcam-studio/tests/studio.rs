@@ -255,6 +255,17 @@ fn a_cancelled_run_leaves_no_folder() {
     let (status, started) = post(addr, "/api/studio/run", &body);
     assert_eq!(status, 200, "{started}");
     let name = started["run"].as_str().unwrap().to_string();
+    // Cancelled once it has reported a phase: stopped inside the run.
+    let t0 = Instant::now();
+    loop {
+        let (_, s) = get(addr, "/api/studio/status");
+        assert_eq!(s["state"], "running", "{s}");
+        if s["phase"].is_string() {
+            break;
+        }
+        assert!(t0.elapsed() < Duration::from_secs(60), "{s}");
+        std::thread::sleep(Duration::from_millis(5));
+    }
     let (status, cancelled) = post(addr, "/api/studio/cancel", &json!({}));
     assert_eq!(status, 200);
     assert_eq!(cancelled["run"], name.as_str());
@@ -374,4 +385,45 @@ fn a_job_file_opens_its_folder_with_the_job_chosen() {
             "{err}"
         );
     }
+}
+
+#[test]
+fn examples_started_from_the_page_run_and_open_as_their_kind_of_result() {
+    let (outer, dir) = folder("studio-examples");
+    let before = tree(&outer);
+    let addr = start(&dir);
+    for (example, kind) in [
+        ("dress-ballscrew-nut", "dressing"),
+        ("correct-mould", "correction"),
+    ] {
+        let (status, job) = post(addr, "/api/studio/example", &json!({"name": example}));
+        assert_eq!(status, 200, "{job}");
+        assert_eq!(job["kind"], kind);
+        let file = job["file"].as_str().unwrap();
+        let body =
+            json!({"file": file, "kind": kind, "text": job["text"], "values": job["values"]});
+        let (status, started) = post(addr, "/api/studio/run", &body);
+        assert_eq!(status, 200, "{started}");
+        let name = started["run"].as_str().unwrap().to_string();
+        let status = ended(addr, &name);
+        assert_eq!(status["state"], "done", "{status}");
+        let (code, shown) = get(addr, &format!("/runs/{name}/api/kind"));
+        assert_eq!((code, shown["kind"].as_str()), (200, Some(kind)), "{shown}");
+        let (code, _) = get(addr, &format!("/runs/{name}/api/{kind}"));
+        assert_eq!(code, 200, "{name}");
+    }
+    let (_, studio) = get(addr, "/api/studio");
+    let jobs: Vec<&str> = studio["jobs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j["file"].as_str().unwrap())
+        .collect();
+    assert!(jobs.contains(&"dress-ballscrew-nut.toml"), "{jobs:?}");
+    assert!(jobs.contains(&"correct-mould.toml"), "{jobs:?}");
+    let new: Vec<PathBuf> = tree(&outer)
+        .into_iter()
+        .filter(|p| !before.contains(p))
+        .collect();
+    assert!(new.iter().all(|p| p.starts_with("dir")), "{new:?}");
 }

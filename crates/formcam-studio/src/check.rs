@@ -19,8 +19,8 @@ use formcam_winding::WindingError;
 use serde::{Deserialize, Serialize};
 use toml_edit::{ImDocument, Item};
 
-use crate::StudioKind;
 use crate::values::line_col;
+use crate::{StudioError, StudioKind, apply_values_as};
 
 /// A problem of a job, placed at its field for the form.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
@@ -72,6 +72,64 @@ pub fn check_job(kind: StudioKind, dir: &Path, file_name: &str, text: &str) -> V
         line,
         message: refusal.message,
     }]
+}
+
+/// A form applied to a job: its new text and its problems, as the page's
+/// Apply shows them.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Applied {
+    /// Whether the job checks clean.
+    pub ok: bool,
+    /// The job's text with the form's values (the base text when they
+    /// could not be written).
+    pub text: String,
+    /// Its problems, each at its field ([`check_job`]).
+    pub errors: Vec<FieldError>,
+}
+
+/// The form's `values` written into `base` (the job `file_name` of `dir`
+/// as saved, a job of `kind`; see [`apply_values_as`]) and the result
+/// checked ([`check_job`]). Values that cannot be written are a problem at
+/// their field, the text left as it was.
+pub fn apply_job(
+    kind: StudioKind,
+    dir: &Path,
+    file_name: &str,
+    base: &str,
+    values: &serde_json::Value,
+) -> Applied {
+    match apply_values_as(Some(kind), base, values) {
+        Ok(text) => {
+            let errors = check_job(kind, dir, file_name, &text);
+            Applied {
+                ok: errors.is_empty(),
+                text,
+                errors,
+            }
+        }
+        Err(e) => Applied {
+            ok: false,
+            text: base.to_string(),
+            errors: vec![FieldError::from(&e)],
+        },
+    }
+}
+
+impl From<&StudioError> for FieldError {
+    /// A studio error as a problem of the form: values at their field, a
+    /// text that is no TOML at its line.
+    fn from(e: &StudioError) -> Self {
+        let (field, line) = match e {
+            StudioError::Values { field, .. } if !field.is_empty() => (Some(field.clone()), None),
+            StudioError::NotToml { line, .. } => (None, Some(*line)),
+            _ => (None, None),
+        };
+        FieldError {
+            field,
+            line,
+            message: e.to_string(),
+        }
+    }
 }
 
 /// A reader's refusal: the message `formcam` prints and where.
@@ -431,6 +489,36 @@ fn line_of(text: &str, field: &str) -> Option<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_form_applied_is_its_text_and_its_problems() {
+        let dir = std::env::temp_dir();
+        let base = "[mandrel]\nkind = \"cylinder\"\nradius = 50.0\nlength = 300.0\n\n[winding]\nwinding_angle_deg = 45.0 # deg\nband_width = 10.0\nband_thickness = 0.5\n";
+        let mut values = crate::values_of(base).expect("toml");
+        values["winding"]["winding_angle_deg"] = serde_json::json!(30);
+        let applied = apply_job(StudioKind::Winding, &dir, "a.toml", base, &values);
+        assert!(applied.ok, "{applied:?}");
+        assert!(applied.text.contains("winding_angle_deg = 30.0 # deg\n"));
+        values["winding"]["band_width"] = serde_json::json!(0);
+        let applied = apply_job(StudioKind::Winding, &dir, "a.toml", base, &values);
+        assert!(!applied.ok);
+        assert_eq!(
+            applied.errors[0].field.as_deref(),
+            Some("winding.band_width")
+        );
+        let refused = apply_job(
+            StudioKind::Winding,
+            &dir,
+            "a.toml",
+            base,
+            &serde_json::json!({"mandrel": 1}),
+        );
+        assert_eq!(refused.text, base);
+        assert_eq!(refused.errors[0].field.as_deref(), Some("mandrel"));
+        let json = serde_json::to_value(&refused).expect("serialises");
+        assert_eq!(json["ok"], serde_json::json!(false));
+        assert!(json["errors"][0]["message"].is_string());
+    }
 
     #[test]
     fn fields_as_the_form_names_them() {

@@ -16,7 +16,7 @@ mod server;
 mod studio;
 mod values;
 
-pub use check::{FieldError, check_job};
+pub use check::{Applied, FieldError, apply_job, check_job};
 pub use error::{NameProblem, StudioError, ValuesProblem};
 pub use examples::{Example, example, examples, start_example};
 pub use kind::StudioKind;

@@ -553,6 +553,22 @@ mod tests {
     }
 
     #[test]
+    fn a_new_job_is_written_in_the_descriptions_order() {
+        let v = json!({
+            "process": {"step": 0.01, "depth": 0.05},
+            "wheel": {"width": 6, "ball_radius": 1.85},
+            "dresser": {"width": 2.9},
+        });
+        let out = apply_values("", &v).expect("applies");
+        assert_eq!(
+            out,
+            "[wheel]\nball_radius = 1.85\nwidth = 6.0\n\n[dresser]\nwidth = 2.9\n\n\
+             [process]\ndepth = 0.05\nstep = 0.01\n"
+        );
+        assert_eq!(StudioKind::of(&out), Some(StudioKind::Dressing));
+    }
+
+    #[test]
     fn values_that_are_no_tables_are_refused_naming_them() {
         let e = apply_values(JOB, &json!({"mandrel": 3})).expect_err("refused");
         assert_eq!(

@@ -3,6 +3,8 @@
 //! `formcam` prints, saving with its `.bak`, an edited example keeping its
 //! comments.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
 use std::fs;
 use std::path::{Path, PathBuf};
 

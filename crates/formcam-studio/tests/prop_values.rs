@@ -1,6 +1,8 @@
 //! The form's values written into a job's text and read back: what was
 //! written is what is read, and writing the values read changes no byte.
 
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
 use formcam_schema::{Field, Kind, Repeat};
 use formcam_studio::{StudioKind, apply_values_as, examples, values_of};
 use proptest::prelude::*;

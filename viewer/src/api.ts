@@ -5,8 +5,14 @@
 import * as report from './report';
 
 /** How a URL's answer is obtained: `fetch` from `formcam view`, or the
- * report's inlined data. */
-const answer: (url: string) => Promise<Response> = report.isReport() ? report.answer : (url) => fetch(url);
+ * report's inlined data. Call sites name `/api/...`; fetched relative to
+ * the page (`api/...`), so a result shown at `/runs/<name>/` asks its own. */
+const answer: (url: string) => Promise<Response> = report.isReport() ? report.answer : (url) => fetch(relative(url));
+
+/** `url` relative to the page: its leading `/` taken off. */
+export function relative(url: string): string {
+  return url.replace(/^\/+/, '');
+}
 
 /** What the page is: `formcam view` (served) or `formcam report` (a file). */
 export const PAGE_NAME = report.isReport() ? 'formcam report' : 'formcam view';
@@ -176,4 +182,16 @@ export async function meshData(n: number): Promise<MeshData> {
   for (let k = 0; k < 3 * nv; k++) positions[k] = v.getFloat32(8 + 4 * k, true);
   for (let k = 0; k < 3 * nt; k++) indices[k] = v.getUint32(8 + 12 * nv + 4 * k, true);
   return { positions, indices };
+}
+
+/**
+ * A POST of `body` as JSON to `url` (the studio's actions; never in a
+ * report): the answer whatever its status, the caller reads its errors.
+ */
+export async function post(url: string, body: unknown): Promise<Response> {
+  return fetch(relative(url), {
+    method: 'POST',
+    headers: { 'content-type': 'application/json' },
+    body: JSON.stringify(body),
+  });
 }

@@ -14,6 +14,7 @@ import { openDressing } from './dressing';
 import { openCorrection } from './correction';
 import { FrameClock } from './perf';
 import { openPath } from './pathview';
+import { openStudio } from './studio';
 
 /** What `window.formcam.state()` returns: the state shown. */
 interface State {
@@ -407,9 +408,14 @@ function clock(t: number): string {
 }
 
 /** The view of the result's kind: a winding result's 3-D view, or the 2-D
- * view of a dressing or correction result in place of it. */
+ * view of a dressing or correction result in place of it; or the studio. */
 async function start(): Promise<void> {
   const { kind } = await api.json<{ kind: string }>('/api/kind');
+  if (kind === 'studio') {
+    // `formcam studio`: the job editor, results shown in a frame of their own.
+    $('app').hidden = true;
+    return openStudio($('studio'));
+  }
   if (kind === 'winding') return main();
   if (kind === 'path') return openPath(ready);
   $('app').hidden = true;

@@ -156,7 +156,16 @@ impl Studio {
     /// The answer to a request: `method`, `url` (path and query), `body`
     /// (JSON, for a POST).
     pub fn answer(&self, method: StudioMethod, url: &str, body: &[u8]) -> Answer {
-        let target = match Target::parse(url) {
+        // `/runs/NAME/`, a run's view page, is read without its final `/`
+        // (a plain path has no empty name).
+        let path = url.split_once('?').map_or(url, |(p, _)| p);
+        let run_page =
+            path.starts_with("/runs/") && path.ends_with('/') && path.matches('/').count() == 3;
+        let target = match Target::parse(if run_page {
+            &path[..path.len() - 1]
+        } else {
+            url
+        }) {
             Ok(t) => t,
             Err(r) => return Answer::refusal(r),
         };
@@ -194,6 +203,7 @@ impl Studio {
             (StudioMethod::Post, _) => Answer::error(404, "no such action"),
             (StudioMethod::Get, ["api", ..]) => Answer::refusal(Refusal::NotFound),
             // The view's page asks for its files relative to its folder.
+            (StudioMethod::Get, ["runs", name]) if run_page => self.run_view(name, url),
             (StudioMethod::Get, ["runs", _]) => Answer {
                 status: 308,
                 kind: TEXT,

@@ -46,9 +46,13 @@ fn folder(name: &str) -> (PathBuf, PathBuf) {
     (outer, dir)
 }
 
+/// The page the studios of these tests serve.
+const PAGE: &str = "<!doctype html><title>studio</title>";
+
 /// A studio on `dir` answering on a background thread.
 fn start(dir: &Path) -> SocketAddr {
-    let server = StudioServer::bind(Studio::open(dir, Page::none()).unwrap(), 0).unwrap();
+    let page = Page::from_files(vec![("index.html".into(), PAGE.as_bytes().to_vec())]);
+    let server = StudioServer::bind(Studio::open(dir, page).unwrap(), 0).unwrap();
     let addr = server.addr();
     let _ = server.spawn();
     addr
@@ -211,6 +215,19 @@ fn a_run_through_the_server_is_the_saved_job_s_wind() {
     // The run's view answers its summary; the run folder keeps the text.
     let (code, summary) = get(addr, &format!("/runs/{name}/api/result"));
     assert_eq!(code, 200, "{summary}");
+    // The page at `/` and at the run's folder, which its relative URLs need.
+    for url in ["/".to_string(), format!("/runs/{name}/")] {
+        let (code, page) = raw(
+            addr,
+            format!("GET {url} HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").as_bytes(),
+        );
+        assert_eq!((code, page.as_slice()), (200, PAGE.as_bytes()), "{url}");
+    }
+    let (code, _) = raw(
+        addr,
+        format!("GET /runs/{name} HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").as_bytes(),
+    );
+    assert_eq!(code, 308);
     let (code, kind) = get(addr, &format!("/runs/{name}/api/kind"));
     assert_eq!((code, kind["kind"].as_str()), (200, Some("winding")));
     let ran = std::fs::read_to_string(dir.join("runs").join(&name).join("job.toml")).unwrap();

@@ -97,6 +97,10 @@ export interface Violation {
 /** `/api/violations`. */
 export interface Violations {
   source: string;
+  /** The checks the view ran (`source` `check`); empty for `check.json`. */
+  checks?: string[];
+  /** Why the view left a check out, else null. */
+  unchecked?: string | null;
   clean: boolean;
   violations: Violation[];
   limits: { axis: string; unit: string; min: number | null; max: number | null }[];

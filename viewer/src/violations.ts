@@ -1,5 +1,5 @@
-// The checks' violations on the page: a list (click one to go to where it
-// first happens), marks on the timeline bar, the axes beyond their limits
+// The checks' violations on the page: which checks ran (and why one did
+// not), a list (click one to go to where it first happens), marks on the timeline bar, the axes beyond their limits
 // at the time shown (red readouts) and the links a collision names.
 import type { AxisHead, Sample, Violation, Violations } from './api';
 
@@ -30,6 +30,25 @@ function fmt(x: number): string {
   return Math.abs(x) >= 1000 ? x.toFixed(1) : x.toPrecision(5);
 }
 
+/** Which checks ran and why one did not, above the list (written once). */
+function ran(list: HTMLElement, data: Violations): void {
+  const host = list.parentElement;
+  if (!host) return;
+  host.querySelectorAll('.checks, .unchecked').forEach((e) => e.remove());
+  const checks = document.createElement('p');
+  checks.className = 'checks';
+  checks.textContent = data.source === 'check.json'
+    ? 'checked when the program was written (check.json)'
+    : `checked: ${(data.checks ?? []).join(', ') || 'none'}`;
+  list.before(checks);
+  if (data.unchecked) {
+    const why = document.createElement('p');
+    why.className = 'unchecked';
+    why.textContent = `not checked: ${data.unchecked}`;
+    list.before(why);
+  }
+}
+
 export class ViolationView {
   constructor(
     list: HTMLElement,
@@ -39,6 +58,7 @@ export class ViolationView {
     seek: (t: number) => void,
   ) {
     list.replaceChildren();
+    ran(list, data);
     if (data.violations.length === 0) {
       const li = document.createElement('li');
       li.className = 'clean';

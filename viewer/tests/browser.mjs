@@ -4,7 +4,8 @@
 // to interactive and frames per second while playing; the eye trajectory
 // and the band laid drawn (their pixels), the follow camera keeping the
 // payout point centred; and, given a second view of a program that breaks a
-// limit, its violations listed, marked and shown on the readouts. Every
+// limit, its violations listed, marked and shown on the readouts, with the
+// checks that ran (and why one did not) above them. Every
 // request a page makes is followed to its end: a page not ready within
 // READY_S fails naming the requests that never finished, and the whole run
 // is bounded by TOTAL_S, so a stalled load fails instead of holding its
@@ -285,14 +286,22 @@ try {
     const listed = await v.$$eval('#violations li', (li) => li.map((x) => x.textContent));
     const marks = await v.$$eval('#marks .mark', (m) => m.length);
     // A mark goes to where its violation first happens.
-    const first = await v.evaluate(async () => (await (await fetch('/api/violations')).json()).violations[0]);
+    const api = await v.evaluate(async () => (await fetch('/api/violations')).json());
+    const first = api.violations[0];
+    // Which checks ran, and why one did not, as the section shows them.
+    const ran = await v.evaluate(() => ({
+      checks: document.querySelector('#violations-section .checks')?.textContent ?? null,
+      unchecked: document.querySelector('#violations-section .unchecked')?.textContent ?? null,
+    }));
     // Marks close in time overlap: the first one clicked as a user's click would.
     await v.evaluate(() => document.querySelector('#marks .mark').click());
     await v.waitForFunction((t) => Math.abs(window.formcam.state().time_s - t) < 1e-9, first.time_s);
     const at = await v.evaluate(() => window.formcam.state());
     const red = await v.$$eval('#readouts td.v.alarm', (c) => c.length);
     await v.screenshot({ path: join(shots, 'violations.png') });
-    results.violations = { listed, marks, first, state: at, red_cells: red };
+    results.violations = {
+      listed, marks, first, state: at, red_cells: red, ran, checks: api.checks, unchecked: api.unchecked,
+    };
   }
   report();
 } catch (e) {

@@ -1,5 +1,6 @@
 // Drives the 2-D parts of the page `formcam view` serves in headless
-// Chromium (Debian's, through playwright-core): a winding result's plots,
+// Chromium (Debian's, through playwright-core): a winding result's plots
+// (and which checks its violations are of),
 // a dressing result's animation (and the region removed so far), a
 // correction result's deviation map (each round's, for a closed loop), and
 // every plot's legend before the pointer comes. It writes what it saw as
@@ -93,6 +94,12 @@ try {
     });
     report.legends = await legends(page);
     report.canvases = await canvases(page, '#plots-panel canvas');
+    // Which checks the violations are of, as the section says.
+    report.checks = await page.evaluate(async () => ({
+      api: await (await fetch('api/violations')).json(),
+      shown: document.querySelector('#violations-section .checks')?.textContent ?? null,
+      unchecked: document.querySelector('#violations-section .unchecked')?.textContent ?? null,
+    }));
     await page.screenshot({ path: join(shots, 'plots.png') });
     await page.evaluate(() => { document.querySelector('#plots-panel').scrollTop = 1e6; });
     await frames(page);

@@ -5,7 +5,8 @@
 //! to `formcam machine fk` of the axes it shows; the eye trajectory and the
 //! band laid drawn, the band growing; the follow camera keeping the payout
 //! point centred; and a program that breaks a tightened limit with its
-//! violations listed, marked on the timeline and red on the readouts.
+//! violations listed, marked on the timeline and red on the readouts, the
+//! checks that ran (and why one did not) named above them.
 //! Screenshots go to `target/screenshots/`.
 //!
 //! The browser test says it was skipped without `/usr/bin/chromium`,
@@ -19,9 +20,8 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
-use std::time::{Duration, Instant};
 
+use common::browser::{browser_present, driver};
 use common::{Running, formcam, get, machines, repo, s, scratch, serving, stderr, wind_ok};
 
 /// Starts `formcam view OUT --port 0` and reads the address it prints first.
@@ -100,60 +100,6 @@ fn a_folder_that_is_no_result_fails_with_exit_2_naming_it() {
     } else {
         assert!(e.contains("npm ci && npm run build"), "{e}");
     }
-}
-
-/// Whether the browser test can run here; fails when it must.
-fn browser_present() -> bool {
-    let missing: Vec<&str> = [
-        (!Path::new("/usr/bin/chromium").is_file())
-            .then_some("/usr/bin/chromium (apt-get install chromium)"),
-        (!repo().join("viewer/node_modules/playwright-core").is_dir())
-            .then_some("viewer/node_modules (npm ci in viewer/)"),
-        (!formcam_view::Page::is_embedded())
-            .then_some("the built page (npm run build in viewer/, then cargo build)"),
-    ]
-    .into_iter()
-    .flatten()
-    .collect();
-    if !missing.is_empty() {
-        assert!(
-            std::env::var("FORMCAM_REQUIRE_BROWSER").as_deref() != Ok("1"),
-            "FORMCAM_REQUIRE_BROWSER=1 but missing: {}",
-            missing.join(", ")
-        );
-        eprintln!("skipped: the browser test needs {}", missing.join(", "));
-    }
-    missing.is_empty()
-}
-
-/// The most the browser driver may take; it bounds itself (a page not
-/// ready within 45 s, the whole run within 150 s), this is the last resort.
-const DRIVER_LIMIT: Duration = Duration::from_secs(300);
-
-/// Runs `viewer/tests/SCRIPT` with `args`, killed past [`DRIVER_LIMIT`]
-/// (`report`: the file it writes, quoted when it is killed).
-fn driver(script: &str, args: &[&str], report: &Path) -> Output {
-    let mut child = Command::new("node")
-        .arg(repo().join("viewer/tests").join(script))
-        .args(args)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let started = Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if started.elapsed() > DRIVER_LIMIT {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!(
-                "the browser driver did not end within {} s; its report so far: {}",
-                DRIVER_LIMIT.as_secs(),
-                std::fs::read_to_string(report).unwrap_or_default()
-            );
-        }
-        std::thread::sleep(Duration::from_millis(100));
-    }
-    child.wait_with_output().unwrap()
 }
 
 #[test]
@@ -318,6 +264,27 @@ fn the_browser_shows_the_payout_point_formcam_machine_fk_gives() {
         "{v}"
     );
     assert!(v["red_cells"].as_u64().unwrap() >= 1, "{v}");
+    // Above the list, the checks the view ran (its own: the machine was
+    // replaced) and why one did not, as `/api/violations` says.
+    let checks: Vec<&str> = v["checks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c.as_str().unwrap())
+        .collect();
+    assert!(
+        checks.contains(&"axes") && checks.contains(&"collisions"),
+        "{v}"
+    );
+    assert_eq!(
+        v["ran"]["checks"],
+        format!("checked: {}", checks.join(", ")),
+        "{v}"
+    );
+    match v["unchecked"].as_str() {
+        Some(why) => assert_eq!(v["ran"]["unchecked"], format!("not checked: {why}"), "{v}"),
+        None => assert!(v["ran"]["unchecked"].is_null(), "{v}"),
+    }
     eprintln!(
         "browser: time to interactive {:.2} s, {:.1} frames/s playing at {}x; screenshots in {}",
         r["tti_s"].as_f64().unwrap(),
@@ -375,6 +342,14 @@ fn the_browser_draws_the_winding_plots_with_every_point_the_server_sent() {
     let canvases = r["canvases"].as_array().unwrap();
     assert_eq!(canvases.len(), 8, "{r:#}");
     assert!(canvases.iter().all(drawn), "a flat plot: {r:#}");
+    // The violations of the check `formcam wind` wrote, said so above them.
+    let c = &r["checks"];
+    assert_eq!(c["api"]["source"], "check.json", "{c}");
+    assert_eq!(
+        c["shown"], "checked when the program was written (check.json)",
+        "{c}"
+    );
+    assert!(c["unchecked"].is_null(), "{c}");
 }
 
 #[test]

@@ -15,8 +15,8 @@ use serde_json::{Value, json};
 
 use crate::runs::{RUNS_FOLDER, RunOrder, Runs};
 use crate::{
-    FieldError, StudioError, StudioKind, apply_values_as, check_job, examples, job_path, save_job,
-    start_example, values_of,
+    Applied, StudioError, StudioKind, apply_job, examples, job_path, save_job, start_example,
+    values_of,
 };
 
 /// The most bytes of a request's body (the JSON the page posts).
@@ -275,8 +275,9 @@ impl Studio {
         ))
     }
 
-    /// The form's values applied to the text; the new text and its check.
-    fn edited(&self, e: &Edit) -> Result<(String, Vec<FieldError>), Answer> {
+    /// The form's values applied to the text and checked (the job file's
+    /// name checked first).
+    fn edited(&self, e: &Edit) -> Result<Applied, Answer> {
         let file = match &e.file {
             Some(f) => {
                 self.job_path(f)?;
@@ -284,35 +285,19 @@ impl Studio {
             }
             None => UNSAVED,
         };
-        let text = apply_values_as(Some(e.kind), &e.text, &e.values).map_err(|err| {
-            Answer::json(
-                422,
-                &json!({"ok": false, "errors": [FieldError {
-                    field: None,
-                    line: None,
-                    message: err.to_string(),
-                }]}),
-            )
-        })?;
-        let errors = check_job(e.kind, &self.dir, file, &text);
-        Ok((text, errors))
+        Ok(apply_job(e.kind, &self.dir, file, &e.text, &e.values))
     }
 
     /// `/api/studio/apply`: the new text and every error at its field.
     fn apply(&self, e: &Edit) -> Answer {
-        Answer::of(self.edited(e).map(|(text, errors)| {
-            Answer::json(
-                200,
-                &json!({"ok": errors.is_empty(), "text": text, "errors": errors}),
-            )
-        }))
+        Answer::of(self.edited(e).map(|a| Answer::json(200, &json!(a))))
     }
 
     /// `/api/studio/run`: a job that checks clean starts (the running one
     /// cancelled); else its errors, and nothing runs.
     fn run(&self, e: &Edit) -> Result<Answer, Answer> {
-        let (text, errors) = self.edited(e)?;
-        if !errors.is_empty() {
+        let Applied { ok, text, errors } = self.edited(e)?;
+        if !ok {
             return Err(Answer::json(422, &json!({"ok": false, "errors": errors})));
         }
         let name = self
@@ -333,8 +318,8 @@ impl Studio {
             .file
             .as_deref()
             .ok_or_else(|| Answer::error(400, "give the job file's name to save it as"))?;
-        let (text, errors) = self.edited(e)?;
-        if !errors.is_empty() {
+        let Applied { ok, text, errors } = self.edited(e)?;
+        if !ok {
             return Err(Answer::json(422, &json!({"ok": false, "errors": errors})));
         }
         save_job(&self.dir, file, &text).map_err(|err| Answer::error(400, err))?;

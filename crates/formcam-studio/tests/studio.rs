@@ -46,9 +46,13 @@ fn folder(name: &str) -> (PathBuf, PathBuf) {
     (outer, dir)
 }
 
+/// The page the studios of these tests serve.
+const PAGE: &str = "<!doctype html><title>studio</title>";
+
 /// A studio on `dir` answering on a background thread.
 fn start(dir: &Path) -> SocketAddr {
-    let server = StudioServer::bind(Studio::open(dir, Page::none()).unwrap(), 0).unwrap();
+    let page = Page::from_files(vec![("index.html".into(), PAGE.as_bytes().to_vec())]);
+    let server = StudioServer::bind(Studio::open(dir, page).unwrap(), 0).unwrap();
     let addr = server.addr();
     let _ = server.spawn();
     addr
@@ -211,6 +215,19 @@ fn a_run_through_the_server_is_the_saved_job_s_wind() {
     // The run's view answers its summary; the run folder keeps the text.
     let (code, summary) = get(addr, &format!("/runs/{name}/api/result"));
     assert_eq!(code, 200, "{summary}");
+    // The page at `/` and at the run's folder, which its relative URLs need.
+    for url in ["/".to_string(), format!("/runs/{name}/")] {
+        let (code, page) = raw(
+            addr,
+            format!("GET {url} HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").as_bytes(),
+        );
+        assert_eq!((code, page.as_slice()), (200, PAGE.as_bytes()), "{url}");
+    }
+    let (code, _) = raw(
+        addr,
+        format!("GET /runs/{name} HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").as_bytes(),
+    );
+    assert_eq!(code, 308);
     let (code, kind) = get(addr, &format!("/runs/{name}/api/kind"));
     assert_eq!((code, kind["kind"].as_str()), (200, Some("winding")));
     let ran = std::fs::read_to_string(dir.join("runs").join(&name).join("job.toml")).unwrap();
@@ -255,6 +272,17 @@ fn a_cancelled_run_leaves_no_folder() {
     let (status, started) = post(addr, "/api/studio/run", &body);
     assert_eq!(status, 200, "{started}");
     let name = started["run"].as_str().unwrap().to_string();
+    // Cancelled once it has reported a phase: stopped inside the run.
+    let t0 = Instant::now();
+    loop {
+        let (_, s) = get(addr, "/api/studio/status");
+        assert_eq!(s["state"], "running", "{s}");
+        if s["phase"].is_string() {
+            break;
+        }
+        assert!(t0.elapsed() < Duration::from_secs(60), "{s}");
+        std::thread::sleep(Duration::from_millis(5));
+    }
     let (status, cancelled) = post(addr, "/api/studio/cancel", &json!({}));
     assert_eq!(status, 200);
     assert_eq!(cancelled["run"], name.as_str());
@@ -374,4 +402,45 @@ fn a_job_file_opens_its_folder_with_the_job_chosen() {
             "{err}"
         );
     }
+}
+
+#[test]
+fn examples_started_from_the_page_run_and_open_as_their_kind_of_result() {
+    let (outer, dir) = folder("studio-examples");
+    let before = tree(&outer);
+    let addr = start(&dir);
+    for (example, kind) in [
+        ("dress-ballscrew-nut", "dressing"),
+        ("correct-mould", "correction"),
+    ] {
+        let (status, job) = post(addr, "/api/studio/example", &json!({"name": example}));
+        assert_eq!(status, 200, "{job}");
+        assert_eq!(job["kind"], kind);
+        let file = job["file"].as_str().unwrap();
+        let body =
+            json!({"file": file, "kind": kind, "text": job["text"], "values": job["values"]});
+        let (status, started) = post(addr, "/api/studio/run", &body);
+        assert_eq!(status, 200, "{started}");
+        let name = started["run"].as_str().unwrap().to_string();
+        let status = ended(addr, &name);
+        assert_eq!(status["state"], "done", "{status}");
+        let (code, shown) = get(addr, &format!("/runs/{name}/api/kind"));
+        assert_eq!((code, shown["kind"].as_str()), (200, Some(kind)), "{shown}");
+        let (code, _) = get(addr, &format!("/runs/{name}/api/{kind}"));
+        assert_eq!(code, 200, "{name}");
+    }
+    let (_, studio) = get(addr, "/api/studio");
+    let jobs: Vec<&str> = studio["jobs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j["file"].as_str().unwrap())
+        .collect();
+    assert!(jobs.contains(&"dress-ballscrew-nut.toml"), "{jobs:?}");
+    assert!(jobs.contains(&"correct-mould.toml"), "{jobs:?}");
+    let new: Vec<PathBuf> = tree(&outer)
+        .into_iter()
+        .filter(|p| !before.contains(p))
+        .collect();
+    assert!(new.iter().all(|p| p.starts_with("dir")), "{new:?}");
 }

@@ -9,6 +9,8 @@ use std::net::TcpStream;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 
+pub mod browser;
+
 /// The built `formcam` binary.
 pub fn formcam() -> Command {
     Command::new(env!("CARGO_BIN_EXE_formcam"))

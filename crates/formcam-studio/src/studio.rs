@@ -444,4 +444,31 @@ mod tests {
         assert_eq!(target_segment("/runs/a", 1), "a");
         assert_eq!(target_segment("/runs", 1), "");
     }
+
+    #[test]
+    fn a_runs_page_is_its_view_and_its_name_alone_redirects_there() {
+        #![allow(clippy::unwrap_used)]
+        let dir = std::env::temp_dir().join(format!("formcam-studio-page-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let studio = Studio::open(&dir, Page::none()).unwrap();
+        // No such run: the view's 404, not a refused path.
+        for url in ["/runs/x/", "/runs/x/api/kind", "/runs/x/?t=1"] {
+            assert_eq!(
+                studio.answer(StudioMethod::Get, url, &[]).status,
+                404,
+                "{url}"
+            );
+        }
+        let a = studio.answer(StudioMethod::Get, "/runs/x", &[]);
+        assert_eq!(a.location.as_deref(), Some("/runs/x/"));
+        // Nothing else ends in `/`.
+        for url in ["/runs/x//", "/api/studio/", "/runs/"] {
+            assert_eq!(
+                studio.answer(StudioMethod::Get, url, &[]).status,
+                400,
+                "{url}"
+            );
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -270,7 +270,7 @@ export async function openCorrection(host: HTMLElement, ready: Promise<void>): P
       b.style.outline = on ? '2px solid #1f77b4' : '';
     });
     q('.which-note').textContent = pair.after
-      ? (loop ? `after: round ${pair.after.label.replace('round ', '')}, the part of the corrected program` : 'after: the next part, predicted from the corrected program')
+      ? (loop ? `after: ${pair.after.label}, the part the corrected program made` : 'after: the next part, predicted from the corrected program')
       : (loop ? 'the last round: no after' : 'no prediction in this result');
     surface?.colour(m.vertex_deviation.map((d) => divergingRgb(d / limit).map((v) => v / 255) as [number, number, number]));
     colourBar();

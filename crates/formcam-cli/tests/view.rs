@@ -522,7 +522,10 @@ fn the_browser_maps_every_measured_point_of_a_correction() {
                 .any(|(c, b)| c.abs_diff(b) > 3),
             "the background at the surface's centre: {r:#}"
         );
-        assert!(drawn(&seen["surface"][0]) && drawn(&seen["bar"][0]), "{r:#}");
+        assert!(
+            drawn(&seen["surface"][0]) && drawn(&seen["bar"][0]),
+            "{r:#}"
+        );
     }
     // Before and after on one colour scale: other colours, and a smaller
     // worst deviation after (the next part predicted, as the report says).
@@ -542,7 +545,10 @@ fn the_browser_maps_every_measured_point_of_a_correction() {
         "{r:#}"
     );
     // Back to before: the first picture again.
-    assert_eq!(before["surface"][0]["hash"], r["back"]["surface"][0]["hash"]);
+    assert_eq!(
+        before["surface"][0]["hash"],
+        r["back"]["surface"][0]["hash"]
+    );
     // Every node marked by what happened to it, counted as the report does.
     let nodes = &before["state"]["nodes"];
     assert_eq!(nodes["every"], 1);

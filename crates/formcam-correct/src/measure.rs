@@ -462,7 +462,10 @@ mod tests {
         let again = Measurements::from_csv(&m.to_csv()).unwrap();
         assert_eq!(again.len(), m.len());
         for (a, b) in again.points().zip(m.points()) {
-            assert_eq!((&a.point, a.nominal, a.actual), (&b.point, b.nominal, b.actual));
+            assert_eq!(
+                (&a.point, a.nominal, a.actual),
+                (&b.point, b.nominal, b.actual)
+            );
             let n = (a.normal.unwrap(), b.normal.unwrap());
             assert!((0..3).all(|k| (n.0[k] - n.1[k]).abs() < 1e-15), "{n:?}");
         }

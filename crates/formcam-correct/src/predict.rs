@@ -82,7 +82,12 @@ mod tests {
         for (gain, tool, interpolation, normals) in [
             (1.0, Tool::Point, Interpolation::Bilinear, false),
             (0.5, Tool::Point, Interpolation::Bicubic, true),
-            (0.8, Tool::Ball { radius: 3.0 }, Interpolation::Bilinear, true),
+            (
+                0.8,
+                Tool::Ball { radius: 3.0 },
+                Interpolation::Bilinear,
+                true,
+            ),
         ] {
             let m = plate(dev, normals);
             let grid = Grid::from_measurements(&m, None).unwrap();
@@ -96,7 +101,10 @@ mod tests {
             let after = predict_next(&m, &c);
             assert_eq!(after.len(), m.len());
             for (a, b) in after.points().zip(m.points()) {
-                assert_eq!((&a.point, a.nominal, a.normal), (&b.point, b.nominal, b.normal));
+                assert_eq!(
+                    (&a.point, a.nominal, a.normal),
+                    (&b.point, b.nominal, b.normal)
+                );
                 let want = (1.0 - gain) * dev(b.nominal[0], b.nominal[1]);
                 assert!(
                     (signed(a) - want).abs() < 1e-12,

@@ -173,11 +173,18 @@ fn the_bundled_job_gives_its_program_plots_and_a_fresh_report() {
     );
     let r = json(&run.file("report.json").unwrap().bytes);
     // A row per feed node, its placement counted as the report counts it.
-    let status = text(&run, "node-status.csv");
-    let rows: Vec<Vec<&str>> = status.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    let status = common::text(&run, "node-status.csv");
+    let rows: Vec<Vec<&str>> = status
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
     assert_eq!(rows.len() as u64, r["nodes_feed"].as_u64().unwrap());
     let count = |w: &str| rows.iter().filter(|c| c[4] == w).count() as u64;
-    assert_eq!(count("extrapolated"), r["nodes_extrapolated"].as_u64().unwrap());
+    assert_eq!(
+        count("extrapolated"),
+        r["nodes_extrapolated"].as_u64().unwrap()
+    );
     assert_eq!(count("outside"), r["nodes_outside"].as_u64().unwrap());
     let moved = rows
         .iter()
@@ -189,7 +196,8 @@ fn the_bundled_job_gives_its_program_plots_and_a_fresh_report() {
         &std::fs::read_to_string(examples().join("correct/cmm.csv")).unwrap(),
     )
     .unwrap();
-    let after = formcam_correct::Measurements::from_csv(&text(&run, "predicted-cmm.csv")).unwrap();
+    let after =
+        formcam_correct::Measurements::from_csv(&common::text(&run, "predicted-cmm.csv")).unwrap();
     assert_eq!(after.len(), before.len());
     let predicted = r["predicted_max_deviation_mm"].as_f64().unwrap();
     assert!((after.max_deviation() - predicted).abs() < 1e-12);

@@ -267,18 +267,30 @@ fn the_correction_sends_its_surface_the_part_after_and_every_node() {
     assert_eq!(vertices.len() as u64, nu * nv);
     let triangles = s["triangles"].as_array().unwrap();
     assert_eq!(triangles.len() as u64, 2 * (nu - 1) * (nv - 1));
-    assert!(triangles.iter().flat_map(|t| numbers(t)).all(|k| k < (nu * nv) as f64));
+    assert!(
+        triangles
+            .iter()
+            .flat_map(|t| numbers(t))
+            .all(|k| k < (nu * nv) as f64)
+    );
     // Every vertex a measured point's nominal place, its deviation the
     // measured one: the same range.
     let measured = numbers(&c["deviation"]);
     let at_vertices = numbers(&c["vertex_deviation"]);
     assert_eq!(at_vertices.len(), vertices.len());
     let (lo, hi) = (range(&measured), range(&at_vertices));
-    assert!((lo.0 - hi.0).abs() < 1e-9 && (lo.1 - hi.1).abs() < 1e-9, "{lo:?} {hi:?}");
+    assert!(
+        (lo.0 - hi.0).abs() < 1e-9 && (lo.1 - hi.1).abs() < 1e-9,
+        "{lo:?} {hi:?}"
+    );
     let (x, y) = (numbers(&c["x"]), numbers(&c["y"]));
     for v in vertices {
         let v = numbers(v);
-        assert!(x.iter().zip(&y).any(|(a, b)| (a - v[0]).abs() < 1e-9 && (b - v[1]).abs() < 1e-9));
+        assert!(
+            x.iter()
+                .zip(&y)
+                .any(|(a, b)| (a - v[0]).abs() < 1e-9 && (b - v[1]).abs() < 1e-9)
+        );
     }
     // After: the next part predicted from the corrected program, at the
     // same points, its worst deviation the report's and far below before.
@@ -307,8 +319,18 @@ fn the_correction_sends_its_surface_the_part_after_and_every_node() {
     for k in ["x", "y", "z", "placement", "moved"] {
         assert_eq!(n[k].as_array().unwrap().len() as u64, nodes, "{k}");
     }
-    let placed = |w: &str| n["placement"].as_array().unwrap().iter().filter(|p| *p == w).count() as u64;
-    assert_eq!(placed("extrapolated"), counts["extrapolated"].as_u64().unwrap());
+    let placed = |w: &str| {
+        n["placement"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|p| *p == w)
+            .count() as u64
+    };
+    assert_eq!(
+        placed("extrapolated"),
+        counts["extrapolated"].as_u64().unwrap()
+    );
     assert_eq!(placed("inside"), counts["inside"].as_u64().unwrap());
     assert_eq!(
         counts["inside"].as_u64().unwrap()
@@ -387,7 +409,11 @@ fn a_closed_loop_opens_as_a_correction_with_the_map_of_every_round() {
     for r in rounds {
         assert_eq!(numbers(&r["vertex_deviation"]).len(), vertices);
     }
-    assert!(c["after"].is_null() && c["nodes"].is_null(), "{}", c["after"]);
+    assert!(
+        c["after"].is_null() && c["nodes"].is_null(),
+        "{}",
+        c["after"]
+    );
     assert_eq!(view.answer("/api/dressing").0, 404);
     assert_eq!(view.answer("/api/plots").0, 404);
 }

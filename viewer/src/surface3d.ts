@@ -123,7 +123,7 @@ export class DeviationSurface {
       const ng = new THREE.BufferGeometry();
       ng.setAttribute('position', new THREE.Float32BufferAttribute(pos, 3));
       ng.setAttribute('color', new THREE.Float32BufferAttribute(colours, 3));
-      this.nodes = new THREE.Points(ng, new THREE.PointsMaterial({ vertexColors: true, size: 3, sizeAttenuation: false }));
+      this.nodes = new THREE.Points(ng, new THREE.PointsMaterial({ vertexColors: true, size: 2, sizeAttenuation: false }));
       this.scene.add(this.nodes);
     }
 
@@ -144,7 +144,9 @@ export class DeviationSurface {
 
   /** The whole surface in sight, seen from the front left and above. */
   fit(): void {
-    const d = this.radius / Math.sin((this.camera.fov * Math.PI) / 360);
+    // The bounding sphere's silhouette is wider than the surface seen from
+    // above at a slant: come a little nearer than the sphere needs.
+    const d = (0.8 * this.radius) / Math.sin((this.camera.fov * Math.PI) / 360);
     this.camera.position.copy(this.centre).add(new THREE.Vector3(-0.45, -0.75, 0.55).normalize().multiplyScalar(d));
     this.controls.target.copy(this.centre);
     this.controls.update();

@@ -270,7 +270,7 @@ fn the_correction_sends_its_surface_the_part_after_and_every_node() {
     assert!(
         triangles
             .iter()
-            .flat_map(|t| numbers(t))
+            .flat_map(numbers)
             .all(|k| k < (nu * nv) as f64)
     );
     // Every vertex a measured point's nominal place, its deviation the

@@ -195,6 +195,11 @@ try {
       await frames(page);
       report.round0 = { state: await page.evaluate(() => window.formcam.state()), map: await canvases(page, '#app2d canvas.view2d') };
       await page.screenshot({ path: join(shots, 'loop-round0.png') });
+      // Round 0's after: round 1, the part of the first corrected program.
+      step = 'round 0 after';
+      await page.evaluate(() => window.formcam.show('after'));
+      report.round0_after = { state: await page.evaluate(() => window.formcam.state()), surface: await canvases(page, '#app2d .surface3d canvas') };
+      await page.screenshot({ path: join(shots, 'loop-round0-after.png') });
     }
   } else {
     errors.push(`driver: unknown kind ${kind}`);

@@ -623,6 +623,22 @@ fn the_browser_opens_a_closed_loop_with_the_map_of_each_round() {
     assert_eq!(r["round0"]["state"]["round"], 0);
     assert_eq!(r["round0"]["state"]["points"].as_u64().unwrap(), cmm(0));
     assert_ne!(r["round0"]["map"][0]["hash"], r["map"][0]["hash"]);
+    // The last round has no after; round 0's is round 1, on one scale.
+    assert_eq!(state["after_available"], false, "{r:#}");
+    assert_eq!(state["view"], "before");
+    let (before, after) = (&r["round0"]["state"], &r["round0_after"]["state"]);
+    assert_eq!(
+        (&before["view"], &after["view"]),
+        (&"before".into(), &"after".into())
+    );
+    assert_eq!(after["round"], 0);
+    assert_eq!(before["limit"], after["limit"]);
+    let worst = |s: &serde_json::Value| s["max_abs_deviation"].as_f64().unwrap();
+    let measured = |k: usize| report["rounds"][k]["measured_max_mm"].as_f64().unwrap();
+    assert!((worst(before) - measured(0)).abs() < 2e-4, "{r:#}");
+    assert!((worst(after) - measured(1)).abs() < 2e-4, "{r:#}");
+    assert!(worst(after) < worst(before), "{r:#}");
+    assert!(drawn(&r["round0_after"]["surface"][0]), "{r:#}");
     assert!(
         r["title"]
             .as_str()

@@ -255,7 +255,7 @@ export async function openCorrection(host: HTMLElement, ready: Promise<void>): P
     m = which === 'after' && pair.after ? pair.after : pair.before;
     limit = Math.max(1e-9, maxAbs(pair.before.deviation, pair.before.vertex_deviation,
       pair.after?.deviation ?? [], pair.after?.vertex_deviation ?? []));
-    q('.status').textContent = `${loop ? `${maps[shown].label}, ` : ''}${which === 'after' && pair.after ? `${pair.after.label}, ` : ''}` +
+    q('.status').textContent = `${loop ? `${maps[shown].label}, ` : ''}${which === 'after' && pair.after ? `${loop ? 'after: ' : ''}${pair.after.label}, ` : ''}` +
       `${m.measurements}: ${m.x.length} points in ${m.sections.length} sections` +
       `${!loop && c.program ? `, ${c.program}` : ''}`;
     host.querySelectorAll<HTMLButtonElement>('.rounds button').forEach((b) => {

@@ -420,7 +420,7 @@ impl NodeMarks {
                     path: path.to_path_buf(),
                     line: k + 2,
                     problem: format!(
-                        "`placement` is {}: inside, extrapolated, outside or unknown",
+                        "`placement` is `{}`: inside, extrapolated, outside or unknown",
                         formcam_files::quote(w)
                     ),
                 })
@@ -514,6 +514,51 @@ mod tests {
         assert!((b.sections[0].max - 0.5).abs() < 1e-12);
         assert!((b.sections[0].rms - (0.13f64).sqrt()).abs() < 1e-12);
         assert!((b.sections[1].rms - 0.2).abs() < 1e-12);
+    }
+
+    #[test]
+    fn nodes_are_counted_every_one_and_sent_thinned() {
+        let dir = std::env::temp_dir().join(format!("formcam-view-nodes-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(NODE_STATUS_FILE);
+        std::fs::write(
+            &path,
+            "line,x,y,z,placement,dx,dy,dz\n\
+             3,0,0,1,inside,0,0,-0.1\n4,1,0,1,inside,0,0,0\n5,2,0,1,extrapolated,0,0.01,0\n\
+             6,3,0,1,outside,0,0,0\n7,4,0,1,unknown,0,0,0\n",
+        )
+        .unwrap();
+        let all = NodeMarks::read(&path, 10).unwrap();
+        assert_eq!(
+            all.counts,
+            NodeCounts {
+                nodes: 5,
+                moved: 2,
+                inside: 2,
+                extrapolated: 1,
+                outside: 1,
+                unknown: 1,
+            }
+        );
+        assert_eq!((all.every, all.x.len()), (1, 5));
+        assert_eq!(all.moved, [true, false, true, false, false]);
+        assert_eq!(all.placement[2], Placement::Extrapolated);
+        // At most two: one in three sent, every one counted.
+        let few = NodeMarks::read(&path, 2).unwrap();
+        assert_eq!((few.every, few.x.clone()), (3, vec![0.0, 3.0]));
+        assert_eq!(few.placement, [Placement::Inside, Placement::Outside]);
+        assert_eq!(few.counts, all.counts);
+        std::fs::write(
+            &path,
+            "line,x,y,z,placement,dx,dy,dz\n3,0,0,1,beside,0,0,0\n",
+        )
+        .unwrap();
+        let e = NodeMarks::read(&path, 10).unwrap_err().to_string();
+        assert!(
+            e.ends_with(":2: `placement` is `beside`: inside, extrapolated, outside or unknown"),
+            "{e}"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

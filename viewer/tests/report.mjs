@@ -102,6 +102,12 @@ try {
       r.server_points = c.x.length;
       r.first = await canvases(page, '#app2d canvas.view2d');
       r.sections = await canvases(page, '#app2d .sections canvas');
+      r.surface = await canvases(page, '#app2d .surface3d canvas');
+      // After: the prediction inlined too.
+      await page.evaluate(() => window.formcam.show('after'));
+      r.after_state = await page.evaluate(() => window.formcam.state());
+      r.after_surface = await canvases(page, '#app2d .surface3d canvas');
+      await page.evaluate(() => window.formcam.show('before'));
       await page.screenshot({ path: join(shots, 'report-correction.png') });
     } else {
       errors.push(`driver: unknown kind ${kind}`);

@@ -2,7 +2,8 @@
 // Chromium (Debian's, through playwright-core): a winding result's plots
 // (and which checks its violations are of),
 // a dressing result's animation (and the region removed so far), a
-// correction result's deviation map (each round's, for a closed loop), and
+// correction result's deviation map (each round's, for a closed loop) and
+// its surface in 3-D before and after the correction, and
 // every plot's legend before the pointer comes. It writes what it saw as
 // JSON (the Rust test asserts on it) and screenshots.
 //
@@ -168,6 +169,32 @@ try {
     report.history = await canvases(page, '#app2d .history canvas');
     report.study = await canvases(page, '#app2d .study canvas');
     await page.screenshot({ path: join(shots, `${kind}.png`) });
+    if (kind === 'correction') {
+      // The 3-D surface before and after the correction: the pixel at the
+      // surface's centre, the canvases, the state.
+      const seen = async (which) => {
+        step = `3-D ${which}`;
+        await page.evaluate((w) => window.formcam.show(w), which);
+        const state = await page.evaluate(() => window.formcam.state());
+        const centre = await page.evaluate(([x, y]) => {
+          const c = document.querySelector('#app2d .surface3d canvas');
+          const d = document.createElement('canvas');
+          d.width = c.width;
+          d.height = c.height;
+          const g = d.getContext('2d');
+          g.drawImage(c, 0, 0);
+          return [...g.getImageData(x, y, 1, 1).data.slice(0, 3)];
+        }, state.surface.centre_px);
+        const surface = await canvases(page, '#app2d .surface3d canvas');
+        const bar = await canvases(page, '#app2d canvas.colourbar');
+        const map = await canvases(page, '#app2d canvas.view2d');
+        await page.screenshot({ path: join(shots, `correction-${which}.png`) });
+        return { state, centre, surface, bar, map };
+      };
+      report.before = await seen('before');
+      report.after = await seen('after');
+      report.back = await seen('before');
+    }
     if (kind === 'loop') {
       // The first round's map: the deviations before correcting.
       step = 'round 0';
@@ -175,6 +202,11 @@ try {
       await frames(page);
       report.round0 = { state: await page.evaluate(() => window.formcam.state()), map: await canvases(page, '#app2d canvas.view2d') };
       await page.screenshot({ path: join(shots, 'loop-round0.png') });
+      // Round 0's after: round 1, the part of the first corrected program.
+      step = 'round 0 after';
+      await page.evaluate(() => window.formcam.show('after'));
+      report.round0_after = { state: await page.evaluate(() => window.formcam.state()), surface: await canvases(page, '#app2d .surface3d canvas') };
+      await page.screenshot({ path: join(shots, 'loop-round0-after.png') });
     }
   } else {
     errors.push(`driver: unknown kind ${kind}`);

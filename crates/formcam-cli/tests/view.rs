@@ -595,6 +595,82 @@ fn the_browser_maps_every_measured_point_of_a_correction() {
         title.ends_with("examples/correct/cmm.csv") && !title.contains("/../"),
         "{title}"
     );
+    // The surface in 3-D: the report's grid of sections, drawn where its
+    // centre is, with a colour bar.
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let (before, after) = (&r["before"], &r["after"]);
+    let surface = &before["state"]["surface"];
+    let (nu, nv) = (
+        report["points_per_section"].as_u64().unwrap(),
+        report["sections"].as_u64().unwrap(),
+    );
+    assert_eq!(surface["vertices"].as_u64().unwrap(), nu * nv, "{r:#}");
+    assert_eq!(
+        surface["triangles"].as_u64().unwrap(),
+        2 * (nu - 1) * (nv - 1)
+    );
+    assert_eq!(surface["dots"].as_u64().unwrap() as usize, points);
+    for seen in [before, after] {
+        let centre: Vec<u64> = seen["centre"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c.as_u64().unwrap())
+            .collect();
+        assert!(
+            centre
+                .iter()
+                .zip(BACKGROUND)
+                .any(|(c, b)| c.abs_diff(b) > 3),
+            "the background at the surface's centre: {r:#}"
+        );
+        assert!(
+            drawn(&seen["surface"][0]) && drawn(&seen["bar"][0]),
+            "{r:#}"
+        );
+    }
+    // Before and after on one colour scale: other colours, and a smaller
+    // worst deviation after (the next part predicted, as the report says).
+    assert_eq!(before["state"]["view"], "before");
+    assert_eq!(after["state"]["view"], "after");
+    assert_eq!(before["state"]["limit"], after["state"]["limit"]);
+    assert_ne!(before["surface"][0]["hash"], after["surface"][0]["hash"]);
+    assert_ne!(before["map"][0]["hash"], after["map"][0]["hash"]);
+    let worst = |s: &serde_json::Value| s["state"]["max_abs_deviation"].as_f64().unwrap();
+    assert!(worst(after) < worst(before), "{r:#}");
+    assert!(
+        (worst(after) - report["predicted_max_deviation_mm"].as_f64().unwrap()).abs() < 1e-9,
+        "{r:#}"
+    );
+    assert!(
+        (worst(before) - report["max_deviation_mm"].as_f64().unwrap()).abs() < 1e-9,
+        "{r:#}"
+    );
+    // Back to before: the first picture again.
+    assert_eq!(
+        before["surface"][0]["hash"],
+        r["back"]["surface"][0]["hash"]
+    );
+    // Every node marked by what happened to it, counted as the report does.
+    let nodes = &before["state"]["nodes"];
+    assert_eq!(nodes["every"], 1);
+    let markers = &nodes["markers"];
+    let marked = |k: &str| markers[k].as_u64().unwrap_or(0);
+    assert_eq!(
+        marked("inside") + marked("extrapolated") + marked("outside") + marked("unknown"),
+        report["nodes_feed"].as_u64().unwrap()
+    );
+    assert_eq!(
+        marked("extrapolated"),
+        report["nodes_extrapolated"].as_u64().unwrap()
+    );
+    assert_eq!(marked("outside"), report["nodes_outside"].as_u64().unwrap());
+    assert!(marked("inside") > 0, "{r:#}");
+    eprintln!(
+        "correction: screenshots correction-before.png, correction-after.png in {}",
+        repo().join("target/screenshots").display()
+    );
 }
 
 #[test]
@@ -650,6 +726,22 @@ fn the_browser_opens_a_closed_loop_with_the_map_of_each_round() {
     assert_eq!(r["round0"]["state"]["round"], 0);
     assert_eq!(r["round0"]["state"]["points"].as_u64().unwrap(), cmm(0));
     assert_ne!(r["round0"]["map"][0]["hash"], r["map"][0]["hash"]);
+    // The last round has no after; round 0's is round 1, on one scale.
+    assert_eq!(state["after_available"], false, "{r:#}");
+    assert_eq!(state["view"], "before");
+    let (before, after) = (&r["round0"]["state"], &r["round0_after"]["state"]);
+    assert_eq!(
+        (&before["view"], &after["view"]),
+        (&"before".into(), &"after".into())
+    );
+    assert_eq!(after["round"], 0);
+    assert_eq!(before["limit"], after["limit"]);
+    let worst = |s: &serde_json::Value| s["max_abs_deviation"].as_f64().unwrap();
+    let measured = |k: usize| report["rounds"][k]["measured_max_mm"].as_f64().unwrap();
+    assert!((worst(before) - measured(0)).abs() < 2e-4, "{r:#}");
+    assert!((worst(after) - measured(1)).abs() < 2e-4, "{r:#}");
+    assert!(worst(after) < worst(before), "{r:#}");
+    assert!(drawn(&r["round0_after"]["surface"][0]), "{r:#}");
     assert!(
         r["title"]
             .as_str()
@@ -781,6 +873,10 @@ fn the_report_opens_offline_from_a_file_and_draws_every_view() {
     let c = &results["correction"];
     assert_eq!(c["state"]["points"], c["server_points"], "{c:#}");
     assert!(drawn(&c["sections"][0]), "{c:#}");
+    // The surface in 3-D, before and after, from the inlined answer.
+    assert!(drawn(&c["surface"][0]), "{c:#}");
+    assert_eq!(c["after_state"]["view"], "after", "{c:#}");
+    assert_ne!(c["surface"][0]["hash"], c["after_surface"][0]["hash"]);
     eprintln!(
         "report: screenshots report-winding.png, report-plots.png, report-dressing.png, report-correction.png in {}",
         shots.display()

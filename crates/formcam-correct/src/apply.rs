@@ -17,6 +17,9 @@ pub struct Applied {
     pub nodes: Vec<V3>,
     /// The correction of each movable node, in the order of `nodes`.
     pub corrections: Vec<NodeCorrection>,
+    /// The program line (1-based) of each movable node, in the order of
+    /// `nodes`.
+    pub lines: Vec<usize>,
     /// The program lines (1-based, ascending, each once) of the nodes left
     /// unchanged because they lie beyond the margin.
     pub outside_lines: Vec<usize>,
@@ -85,8 +88,31 @@ impl Corrector<'_> {
             totals: Totals::of(&corrections),
             nodes,
             corrections,
+            lines,
             outside_lines,
         })
+    }
+}
+
+/// The file of a correction's result that lists what happened to each
+/// movable node ([`Applied::status_csv`]).
+pub const NODE_STATUS_FILE: &str = "node-status.csv";
+
+impl Applied {
+    /// What happened to each movable node, as CSV: `line` (the program
+    /// line), `x, y, z` (the node before the correction, mm), `placement`
+    /// ([`Placement::name`]), `dx, dy, dz` (its displacement, mm), in the
+    /// program's order; numbers as Rust's shortest round trip writes them.
+    pub fn status_csv(&self) -> String {
+        let mut out = String::with_capacity(64 * (self.nodes.len() + 1));
+        out.push_str("line,x,y,z,placement,dx,dy,dz\n");
+        for ((p, c), line) in self.nodes.iter().zip(&self.corrections).zip(&self.lines) {
+            let [x, y, z] = *p;
+            let [dx, dy, dz] = c.displacement;
+            let word = c.placement.name();
+            out.push_str(&format!("{line},{x},{y},{z},{word},{dx},{dy},{dz}\n"));
+        }
+        out
     }
 }
 

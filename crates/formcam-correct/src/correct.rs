@@ -87,8 +87,11 @@ impl Options {
 /// foot of a node over the edge can land a few micrometres beyond it.
 pub const EDGE_TOLERANCE_MM: f64 = 0.01;
 
-/// Where a node lies relative to the measured area.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Where a node lies relative to the measured area (`inside`,
+/// `extrapolated`, `outside`, `unknown` in the node status file and the
+/// view).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Placement {
     /// On the measured area: corrected by interpolation.
     Inside,
@@ -98,6 +101,32 @@ pub enum Placement {
     Outside,
     /// A coordinate of the node is unknown (not set by the program): unchanged.
     Unknown,
+}
+
+impl Placement {
+    /// Every placement, in the order the status file's legend lists them.
+    pub const ALL: [Self; 4] = [
+        Self::Inside,
+        Self::Extrapolated,
+        Self::Outside,
+        Self::Unknown,
+    ];
+
+    /// The word written for it: `inside`, `extrapolated`, `outside`,
+    /// `unknown`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Inside => "inside",
+            Self::Extrapolated => "extrapolated",
+            Self::Outside => "outside",
+            Self::Unknown => "unknown",
+        }
+    }
+
+    /// The placement [`Self::name`] writes as `word`.
+    pub fn from_name(word: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|p| p.name() == word)
+    }
 }
 
 /// The correction of one node.

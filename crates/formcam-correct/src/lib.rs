@@ -16,6 +16,9 @@
 //!   `-gain * D(s, t)` ([`Tool`]: point or ball-end).
 //! * [`simulate`] — the closed-loop check: mill, mould with a warp, measure,
 //!   correct, again.
+//! * [`predict_next`] — what the CMM would read of the next part, made on
+//!   the corrected mould (the closed loop's model: the part follows the
+//!   mould).
 //! * [`NodeTable`] — a tool path given as a CSV of nodes.
 //! * [`MillingProgram`] and [`Corrector::apply`] — a whole program
 //!   corrected and written back; [`correct_program`] — the pipeline from a
@@ -32,6 +35,7 @@ mod measure;
 mod nodes;
 mod patch;
 mod pipeline;
+mod predict;
 mod program;
 mod report;
 mod scenario;
@@ -39,7 +43,7 @@ pub mod simulate;
 mod smooth;
 mod vec3;
 
-pub use apply::{Applied, line_ranges};
+pub use apply::{Applied, NODE_STATUS_FILE, line_ranges};
 pub use correct::{
     Corrector, EDGE_TOLERANCE_MM, NodeCorrection, Options, Placement, Tool, Totals,
     check_displacement,
@@ -57,6 +61,7 @@ pub use measure::{MeasuredPoint, Measurements, Section};
 pub use nodes::NodeTable;
 pub use patch::{Interpolation, Surface};
 pub use pipeline::{Correction, correct_program, correct_program_with};
+pub use predict::{PREDICTED_FILE, predict_next};
 pub use program::MillingProgram;
 pub use report::Report;
 pub use scenario::{CMM, LOOP, PROGRAM, SCENARIO_JOB, SURFACE, ScenarioField, ScenarioJob, WARP};

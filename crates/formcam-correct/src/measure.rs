@@ -105,6 +105,29 @@ impl Measurements {
         (s / n as f64).sqrt()
     }
 
+    /// The report as the CSV [`Self::from_csv`] reads: `section, point`,
+    /// the nominal and actual points and, when every point has one, the
+    /// normal `nx, ny, nz`; every number as written by Rust's shortest
+    /// round trip, so the file reads back to the same nominal and actual
+    /// points.
+    pub fn to_csv(&self) -> String {
+        let normals = !self.is_empty() && self.points().all(|p| p.normal.is_some());
+        let mut out = String::from("section,point,x_nom,y_nom,z_nom,x_act,y_act,z_act");
+        out.push_str(if normals { ",nx,ny,nz\n" } else { "\n" });
+        for s in &self.sections {
+            for p in &s.points {
+                let [a, b, c] = p.nominal;
+                let [d, e, f] = p.actual;
+                out.push_str(&format!("{},{},{a},{b},{c},{d},{e},{f}", s.name, p.point));
+                match p.normal {
+                    Some([x, y, z]) if normals => out.push_str(&format!(",{x},{y},{z}\n")),
+                    _ => out.push('\n'),
+                }
+            }
+        }
+        out
+    }
+
     /// Reads the CSV report: a header with the columns `section, point,
     /// x_nom, y_nom, z_nom, x_act, y_act, z_act` (any order), optionally
     /// `nx, ny, nz` (the nominal normal); instead of the actual point, a
@@ -428,6 +451,39 @@ mod tests {
         assert_eq!(m.sections[0].points[0].point, "1");
         assert_eq!(m.sections[0].points[1].deviation(), [0.0, 0.0, 0.2]);
         assert!((m.max_deviation() - 0.2).abs() < 1e-15);
+    }
+
+    #[test]
+    fn csv_written_reads_back_to_the_same_points() {
+        let text = "section,point,x_nom,y_nom,z_nom,x_act,y_act,z_act,nx,ny,nz\n\
+                    A,1,0,0,0.1,0,0,0.30000000000000004,0,0.6,0.8\nA,2,1.5,0,0,1.5,0,-0.1,0,0,1\n\
+                    B,1,0,2,0,1e-7,2,0.2,0,0,1\nB,2,1.5,2,0,1.5,2,0.2,0,0,1\n";
+        let m = Measurements::from_csv(text).unwrap();
+        let again = Measurements::from_csv(&m.to_csv()).unwrap();
+        assert_eq!(again.len(), m.len());
+        for (a, b) in again.points().zip(m.points()) {
+            assert_eq!(
+                (&a.point, a.nominal, a.actual),
+                (&b.point, b.nominal, b.actual)
+            );
+            let n = (a.normal.unwrap(), b.normal.unwrap());
+            assert!((0..3).all(|k| (n.0[k] - n.1[k]).abs() < 1e-15), "{n:?}");
+        }
+        let plain = Measurements {
+            sections: vec![Section {
+                name: "S".into(),
+                points: vec![MeasuredPoint {
+                    point: "1".into(),
+                    nominal: [0.0; 3],
+                    actual: [0.0, 0.0, 0.25],
+                    normal: None,
+                }],
+            }],
+        };
+        assert_eq!(
+            plain.to_csv(),
+            "section,point,x_nom,y_nom,z_nom,x_act,y_act,z_act\nS,1,0,0,0,0,0,0.25\n"
+        );
     }
 
     #[test]

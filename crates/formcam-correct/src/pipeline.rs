@@ -4,7 +4,8 @@
 use formcam_progress::{Phase, Progress, Silent, Step};
 
 use crate::{
-    Applied, CorrectError, Corrector, Grid, Measurements, MillingProgram, Report, Settings, smooth,
+    Applied, CorrectError, Corrector, Grid, Measurements, MillingProgram, Report, Settings,
+    predict_next, smooth,
 };
 
 /// A program corrected from measurements.
@@ -15,6 +16,9 @@ pub struct Correction {
     /// The grid the correction interpolated (smoothed when a noise level
     /// was given).
     pub grid: Grid,
+    /// What the CMM is predicted to read of the next part, made on the
+    /// corrected mould ([`predict_next`]).
+    pub predicted: Measurements,
     /// What was done.
     pub report: Report,
 }
@@ -22,7 +26,8 @@ pub struct Correction {
 /// Corrects `program` from `measurements` with `settings`: every
 /// deviation checked against `settings.max_deviation_mm`, the sections
 /// harmonised into a grid, smoothed for `settings.noise_mm`, the movable
-/// nodes corrected (each displacement checked against the same limit).
+/// nodes corrected (each displacement checked against the same limit), the
+/// next part predicted.
 pub fn correct_program(
     measurements: &Measurements,
     program: &MillingProgram,
@@ -45,16 +50,16 @@ pub fn correct_program_with(
     let mut grid = Grid::from_measurements(measurements, settings.points_per_section)?;
     let smoothing = smooth(&mut grid, settings.noise_mm);
     progress.checkpoint(Step::new(Phase::Grid, 1, 1))?;
-    let applied = Corrector::new(&grid, settings.options)?.apply_with(
-        program,
-        Some(settings.max_deviation_mm),
-        progress,
-    )?;
+    let corrector = Corrector::new(&grid, settings.options)?;
+    let applied = corrector.apply_with(program, Some(settings.max_deviation_mm), progress)?;
+    let predicted = predict_next(measurements, &corrector);
     let smoothing = (settings.noise_mm > 0.0).then_some(smoothing);
-    let report = Report::new(measurements, &grid, smoothing, program, &applied, settings);
+    let mut report = Report::new(measurements, &grid, smoothing, program, &applied, settings);
+    report.predict(&predicted);
     Ok(Correction {
         applied,
         grid,
+        predicted,
         report,
     })
 }

@@ -33,6 +33,12 @@ pub struct Report {
     pub max_deviation_mm: f64,
     /// The RMS measured deviation, mm.
     pub rms_deviation_mm: f64,
+    /// The largest deviation predicted for the next part, made on the
+    /// corrected mould ([`crate::predict_next`]), mm; `None` until
+    /// [`Report::predict`].
+    pub predicted_max_deviation_mm: Option<f64>,
+    /// The RMS deviation predicted for the next part, mm.
+    pub predicted_rms_deviation_mm: Option<f64>,
     /// The largest node displacement, mm.
     pub max_displacement_mm: f64,
     /// The RMS displacement over the moved nodes, mm.
@@ -93,6 +99,8 @@ impl Report {
             outside_lines: line_ranges(&applied.outside_lines),
             max_deviation_mm: measurements.max_deviation(),
             rms_deviation_mm: measurements.rms_deviation(),
+            predicted_max_deviation_mm: None,
+            predicted_rms_deviation_mm: None,
             max_displacement_mm: t.max_displacement_mm,
             rms_displacement_mm: t.rms_displacement_mm,
             interpolation: o.interpolation,
@@ -111,5 +119,12 @@ impl Report {
             moves_split: program.moves_split(),
             max_segment_mm: settings.max_segment_mm,
         }
+    }
+
+    /// Adds the deviations of `predicted`, the next part's measurements
+    /// [`crate::predict_next`] foresees.
+    pub fn predict(&mut self, predicted: &Measurements) {
+        self.predicted_max_deviation_mm = Some(predicted.max_deviation());
+        self.predicted_rms_deviation_mm = Some(predicted.rms_deviation());
     }
 }

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use formcam_correct::simulate::LoopResult;
 use formcam_correct::{
     CorrectError, Correction, CorrectionJob, Given, Grid, JobField, Measurements, MillingProgram,
-    Rule, ScenarioError, ScenarioJob, correct_program_with,
+    NODE_STATUS_FILE, PREDICTED_FILE, Rule, ScenarioError, ScenarioJob, correct_program_with,
 };
 use formcam_plot::{convergence_svg, deviations_svg, displacement_svg};
 use formcam_progress::{Phase, Progress, Silent, Step};
@@ -161,7 +161,7 @@ pub fn correct_with(
     let stem = output
         .file_stem()
         .map_or_else(|| "corrected".into(), |f| f.to_string_lossy().into_owned());
-    let (mut run, report) =
+    let (mut run, report, _) =
         correct_to(job, Form::Flags, (output, &name, &stem), history, progress)?;
     match history {
         Some(_) => Ok(Corrected {
@@ -177,8 +177,9 @@ pub fn correct_with(
 }
 
 /// Runs a `[correct]` job file (`path`, its `text`) into `out_dir`:
-/// `corrected.<ext>` (the program's extension), its plots and a fresh
-/// `report.json`.
+/// `corrected.<ext>` (the program's extension), its plots, what happened
+/// to each node (`node-status.csv`), the next part's predicted CMM report
+/// (`predicted-cmm.csv`) and a fresh `report.json`.
 pub fn correct_job(path: &Path, text: &str, out_dir: &Path) -> Result<RunOutput, RunError> {
     correct_job_with(path, text, out_dir, &Silent)
 }
@@ -201,27 +202,31 @@ pub fn correct_job_with(
         .map_or_else(|| "nc".into(), |e| e.to_string_lossy().into_owned());
     let name = format!("corrected.{ext}");
     let output = out_dir.join(&name);
-    let (mut run, report) = correct_to(
+    let (mut run, report, c) = correct_to(
         &job,
         Form::Job(path),
         (&output, &name, "corrected"),
         None,
         progress,
     )?;
+    run.files
+        .push(ResultFile::new(NODE_STATUS_FILE, c.applied.status_csv()));
+    run.files
+        .push(ResultFile::new(PREDICTED_FILE, c.predicted.to_csv()));
     run.files.push(ResultFile::new("report.json", report));
     run.inputs.insert(0, path.to_path_buf());
     Ok(run)
 }
 
 /// The correction's program `output` and plots (named `name`,
-/// `<stem>.*.svg`), the line, and the report's text.
+/// `<stem>.*.svg`), the line, the report's text and the correction.
 fn correct_to(
     job: &CorrectionJob,
     form: Form<'_>,
     (output, name, stem): (&Path, &str, &str),
     history: Option<&History>,
     progress: &dyn Progress,
-) -> Result<(RunOutput, Vec<u8>), RunError> {
+) -> Result<(RunOutput, Vec<u8>, Correction), RunError> {
     let fail = |e: CorrectError| failure(e, job, form);
     job.settings.check().map_err(fail)?;
     let measurements =
@@ -272,6 +277,7 @@ fn correct_to(
             violations: None,
         },
         report,
+        c,
     ))
 }
 
@@ -375,6 +381,7 @@ fn report_json(
         "max_deviation_mm": r.max_deviation_mm,
         "rms_deviation_mm": r.rms_deviation_mm,
         "max_displacement_mm": r.max_displacement_mm,
+        "predicted_max_deviation_mm": r.predicted_max_deviation_mm,
         "nodes_corrected": r.nodes_corrected,
         "iteration": runs.len() + 1,
     }));

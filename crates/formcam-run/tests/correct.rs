@@ -166,10 +166,42 @@ fn the_bundled_job_gives_its_program_plots_and_a_fresh_report() {
             "corrected.nc",
             "corrected.deviations.svg",
             "corrected.displacement.svg",
+            "node-status.csv",
+            "predicted-cmm.csv",
             "report.json"
         ]
     );
     let r = json(&run.file("report.json").unwrap().bytes);
+    // A row per feed node, its placement counted as the report counts it.
+    let status = common::text(&run, "node-status.csv");
+    let rows: Vec<Vec<&str>> = status
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(rows.len() as u64, r["nodes_feed"].as_u64().unwrap());
+    let count = |w: &str| rows.iter().filter(|c| c[4] == w).count() as u64;
+    assert_eq!(
+        count("extrapolated"),
+        r["nodes_extrapolated"].as_u64().unwrap()
+    );
+    assert_eq!(count("outside"), r["nodes_outside"].as_u64().unwrap());
+    let moved = rows
+        .iter()
+        .filter(|c| c[5..8].iter().any(|d| d.parse::<f64>().unwrap() != 0.0))
+        .count() as u64;
+    assert_eq!(moved, r["nodes_corrected"].as_u64().unwrap());
+    // The next part predicted: the same points, far nearer their nominal.
+    let before = formcam_correct::Measurements::from_csv(
+        &std::fs::read_to_string(examples().join("correct/cmm.csv")).unwrap(),
+    )
+    .unwrap();
+    let after =
+        formcam_correct::Measurements::from_csv(&common::text(&run, "predicted-cmm.csv")).unwrap();
+    assert_eq!(after.len(), before.len());
+    let predicted = r["predicted_max_deviation_mm"].as_f64().unwrap();
+    assert!((after.max_deviation() - predicted).abs() < 1e-12);
+    assert!(predicted < 0.25 * before.max_deviation(), "{predicted}");
     assert_eq!(r["interpolation"], "bicubic");
     assert_eq!(r["tool"]["radius_mm"], 6.0);
     assert_eq!(r["arcs_linearised"], 30);

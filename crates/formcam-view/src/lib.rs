@@ -33,7 +33,8 @@ mod violations;
 
 pub use band::{BAND_POINTS, Band};
 pub use correction::{
-    CorrectionBody, DeviationMap, RoundMap, SectionStats, plain_path, signed_deviation,
+    CorrectionBody, DeviationMap, NODE_MARKS, NodeCounts, NodeMarks, RoundMap, SectionStats,
+    SurfaceMesh, plain_path, signed_deviation,
 };
 pub use dressing::{
     DRESSING_PROGRAM, DresserPass, DresserSample, DressingBody, DressingView, MrrPlot,

@@ -87,6 +87,21 @@ impl Table {
             })
     }
 
+    /// The column `name`'s cells, as written (trimmed); a row without the
+    /// cell gives `""`.
+    ///
+    /// # Errors
+    ///
+    /// [`ViewError::Table`] for a missing column.
+    pub fn words(&self, name: &str) -> Result<Vec<&str>, ViewError> {
+        let c = self.column(name)?;
+        Ok(self
+            .rows
+            .iter()
+            .map(|(_, cells)| cells.get(c).map_or("", String::as_str))
+            .collect())
+    }
+
     /// The column `name` as finite numbers.
     ///
     /// # Errors
@@ -124,6 +139,7 @@ mod tests {
         assert_eq!(t.len(), 2);
         assert_eq!(t.numbers("b").unwrap(), vec![2.0, 4.5]);
         assert!(t.has("a") && !t.has("c"));
+        assert_eq!(t.words("a").unwrap(), ["1", "3"]);
         let e = t.numbers("c").unwrap_err().to_string();
         assert_eq!(e, "t.csv:1: no column `c`");
         let t = Table::parse("a\n1\nNaN\n", Path::new("t.csv")).unwrap();

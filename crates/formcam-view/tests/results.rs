@@ -384,6 +384,104 @@ fn the_correction_map_holds_every_measured_point() {
     assert_eq!(c["rounds"], serde_json::json!([]));
 }
 
+/// The least and largest of `v`.
+fn range(v: &[f64]) -> (f64, f64) {
+    v.iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(*x), b.max(*x))
+        })
+}
+
+#[test]
+fn the_correction_sends_its_surface_the_part_after_and_every_node() {
+    let dir = result("correct-mould.toml");
+    let view = View::open(&dir, None, Page::default()).unwrap();
+    let c = get(&view, "/api/correction");
+    let r = &c["report"];
+    // The surface: the grid of the report's sections and points, two
+    // triangles per facet, every index a vertex.
+    let s = &c["surface"];
+    let (nu, nv) = (s["nu"].as_u64().unwrap(), s["nv"].as_u64().unwrap());
+    assert_eq!(nv, r["sections"].as_u64().unwrap());
+    assert_eq!(nu, r["points_per_section"].as_u64().unwrap());
+    let vertices = s["vertices"].as_array().unwrap();
+    assert_eq!(vertices.len() as u64, nu * nv);
+    let triangles = s["triangles"].as_array().unwrap();
+    assert_eq!(triangles.len() as u64, 2 * (nu - 1) * (nv - 1));
+    assert!(
+        triangles
+            .iter()
+            .flat_map(numbers)
+            .all(|k| k < (nu * nv) as f64)
+    );
+    // Every vertex a measured point's nominal place, its deviation the
+    // measured one: the same range.
+    let measured = numbers(&c["deviation"]);
+    let at_vertices = numbers(&c["vertex_deviation"]);
+    assert_eq!(at_vertices.len(), vertices.len());
+    let (lo, hi) = (range(&measured), range(&at_vertices));
+    assert!(
+        (lo.0 - hi.0).abs() < 1e-9 && (lo.1 - hi.1).abs() < 1e-9,
+        "{lo:?} {hi:?}"
+    );
+    let (x, y) = (numbers(&c["x"]), numbers(&c["y"]));
+    for v in vertices {
+        let v = numbers(v);
+        assert!(
+            x.iter()
+                .zip(&y)
+                .any(|(a, b)| (a - v[0]).abs() < 1e-9 && (b - v[1]).abs() < 1e-9)
+        );
+    }
+    // After: the next part predicted from the corrected program, at the
+    // same points, its worst deviation the report's and far below before.
+    let after = &c["after"];
+    let worst = |v: &Value| numbers(v).iter().fold(0.0f64, |m, d| m.max(d.abs()));
+    assert_eq!(numbers(&after["deviation"]).len(), measured.len());
+    assert_eq!(after["x"], c["x"]);
+    let predicted = r["predicted_max_deviation_mm"].as_f64().unwrap();
+    assert!((worst(&after["deviation"]) - predicted).abs() < 1e-9);
+    assert!(worst(&after["deviation"]) < 0.25 * worst(&c["deviation"]));
+    assert_eq!(numbers(&after["vertex_deviation"]).len(), vertices.len());
+    // The nodes: each counted as the report counts them, every one sent.
+    let n = &c["nodes"];
+    let counts = &n["counts"];
+    for (count, key) in [
+        ("nodes", "nodes_feed"),
+        ("moved", "nodes_corrected"),
+        ("extrapolated", "nodes_extrapolated"),
+        ("outside", "nodes_outside"),
+        ("unknown", "nodes_unknown"),
+    ] {
+        assert_eq!(counts[count], r[key], "{count}");
+    }
+    let nodes = counts["nodes"].as_u64().unwrap();
+    assert_eq!(n["every"], 1);
+    for k in ["x", "y", "z", "placement", "moved"] {
+        assert_eq!(n[k].as_array().unwrap().len() as u64, nodes, "{k}");
+    }
+    let placed = |w: &str| {
+        n["placement"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|p| *p == w)
+            .count() as u64
+    };
+    assert_eq!(
+        placed("extrapolated"),
+        counts["extrapolated"].as_u64().unwrap()
+    );
+    assert_eq!(placed("inside"), counts["inside"].as_u64().unwrap());
+    assert_eq!(
+        counts["inside"].as_u64().unwrap()
+            + counts["extrapolated"].as_u64().unwrap()
+            + counts["outside"].as_u64().unwrap()
+            + counts["unknown"].as_u64().unwrap(),
+        nodes
+    );
+}
+
 #[test]
 fn a_closed_loop_opens_as_a_correction_with_the_map_of_every_round() {
     let dir = result("correct-panel-loop.toml");
@@ -441,6 +539,21 @@ fn a_closed_loop_opens_as_a_correction_with_the_map_of_every_round() {
             .join("examples/correct-panel-loop.toml")
             .canonicalize()
             .unwrap()
+    );
+    // One nominal surface for every round, each round's deviation on it;
+    // no prediction or nodes: the next round is the after.
+    let vertices = c["surface"]["vertices"].as_array().unwrap().len();
+    assert_eq!(
+        vertices as u64,
+        report["sections"].as_u64().unwrap() * report["points_per_section"].as_u64().unwrap()
+    );
+    for r in rounds {
+        assert_eq!(numbers(&r["vertex_deviation"]).len(), vertices);
+    }
+    assert!(
+        c["after"].is_null() && c["nodes"].is_null(),
+        "{}",
+        c["after"]
     );
     assert_eq!(view.answer("/api/dressing").0, 404);
     assert_eq!(view.answer("/api/plots").0, 404);

@@ -14,7 +14,7 @@
 //   node viewer/tests/browser.mjs URL SCREENSHOT_DIR OUT_JSON [PLAY_SPEED [VIOLATIONS_URL]]
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { chromium } from 'playwright-core';
+import { launch } from './driver.mjs';
 import { canvases } from './canvas.mjs';
 
 /** Seconds the page has to become ready (`window.formcam.ready`). */
@@ -52,17 +52,7 @@ const watchdog = setTimeout(() => {
   process.exit(1);
 }, TOTAL_S * 1000);
 
-const browser = await chromium.launch({
-  executablePath: process.env.FORMCAM_CHROMIUM ?? '/usr/bin/chromium',
-  headless: true,
-  args: [
-    '--no-sandbox',
-    '--disable-background-networking',
-    '--use-angle=swiftshader',
-    '--enable-unsafe-swiftshader',
-    '--ignore-gpu-blocklist',
-  ],
-});
+const browser = await launch();
 
 /** A page whose every request is followed (see `requests`). */
 const newPage = async (base) => {

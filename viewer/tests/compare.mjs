@@ -17,7 +17,7 @@
 //     [OTHER [TABLE.FIELD=VALUE [THIRD TABLE.FIELD=VALUE]]]
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { chromium } from 'playwright-core';
+import { frames, launch } from './driver.mjs';
 
 const [url, shots, out, file, change, other, otherChange, third, thirdChange] = process.argv.slice(2);
 if (!url || !shots || !out || !file || !change?.includes('=')) {
@@ -83,13 +83,7 @@ const pixelsNear = (page, sel, rgb) => page.evaluate(([s, [r, g, b]]) => {
   return n;
 }, [sel, rgb]);
 
-const frames = (page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
-
-const browser = await chromium.launch({
-  executablePath: process.env.FORMCAM_CHROMIUM ?? '/usr/bin/chromium',
-  headless: true,
-  args: ['--no-sandbox', '--disable-background-networking'],
-});
+const browser = await launch();
 try {
   step = 'runs';
   const job = await api(`api/studio/job?file=${encodeURIComponent(file)}`);

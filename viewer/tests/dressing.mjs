@@ -10,7 +10,7 @@
 //   node viewer/tests/dressing.mjs URL SCREENSHOT_DIR OUT_JSON
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { chromium } from 'playwright-core';
+import { frames, launch, recordErrors } from './driver.mjs';
 import { canvases } from './canvas.mjs';
 
 const [url, shots, out] = process.argv.slice(2);
@@ -20,12 +20,7 @@ if (!url || !shots || !out) {
 }
 mkdirSync(shots, { recursive: true });
 
-const browser = await chromium.launch({
-  executablePath: process.env.FORMCAM_CHROMIUM ?? '/usr/bin/chromium',
-  headless: true,
-  args: ['--no-sandbox', '--disable-background-networking', '--use-angle=swiftshader',
-    '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
-});
+const browser = await launch();
 const errors = [];
 let step = 'launch';
 const watchdog = setTimeout(() => {
@@ -34,7 +29,6 @@ const watchdog = setTimeout(() => {
   process.exit(1);
 }, 240_000);
 
-const frames = (page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
 const state = (page) => page.evaluate(() => window.formcam.state());
 const server = async (path) => (await fetch(new URL(path, url))).json();
 
@@ -61,10 +55,7 @@ const pixelsOf = (page, selector, rgb, tol = 2) => page.evaluate(([sel, [r, g, b
 try {
   const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
   page.setDefaultTimeout(120_000);
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
-  page.on('pageerror', (e) => errors.push(`page: ${e}`));
-  page.on('requestfailed', (r) => errors.push(`request failed: ${r.url()}`));
-  page.on('request', (r) => { if (!r.url().startsWith(url)) errors.push(`outside request: ${r.url()}`); });
+  recordErrors(page, errors, url);
   step = 'open';
   await page.goto(url);
   await page.evaluate(() => window.formcam.ready);

@@ -9,7 +9,7 @@
 //   node viewer/tests/mesh.mjs URL SCREENSHOT_DIR OUT_JSON [MISSING_URL]
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { chromium } from 'playwright-core';
+import { launch } from './driver.mjs';
 
 /** Seconds the page has to become ready; the whole run's bound. */
 const READY_S = Number(process.env.FORMCAM_READY_S ?? 45);
@@ -33,19 +33,13 @@ const watchdog = setTimeout(() => {
   process.exit(1);
 }, TOTAL_S * 1000);
 
-const browser = await chromium.launch({
-  executablePath: process.env.FORMCAM_CHROMIUM ?? '/usr/bin/chromium',
-  headless: true,
-  args: ['--no-sandbox', '--disable-background-networking', '--use-angle=swiftshader',
-    '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
-});
+const browser = await launch();
 
 /** `base` opened and ready, its console errors and outside requests recorded. */
 const open = async (base) => {
   const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
   page.setDefaultTimeout(READY_S * 1000);
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
-  page.on('pageerror', (e) => errors.push(`page: ${e}`));
+  recordErrors(page, errors);
   page.on('request', (r) => { if (!r.url().startsWith(base)) errors.push(`outside request: ${r.url()}`); });
   await page.goto(base);
   await page.evaluate(() => window.formcam.ready);

@@ -9,8 +9,8 @@
 //   URL: `formcam view` of the same result.
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
+import { frames, launch } from './driver.mjs';
 import { pathToFileURL } from 'node:url';
-import { chromium } from 'playwright-core';
 import { canvases } from './canvas.mjs';
 
 const [shots, out, ...runs] = process.argv.slice(2);
@@ -20,12 +20,7 @@ if (!shots || !out || runs.length === 0) {
 }
 mkdirSync(shots, { recursive: true });
 
-const browser = await chromium.launch({
-  executablePath: process.env.FORMCAM_CHROMIUM ?? '/usr/bin/chromium',
-  headless: true,
-  args: ['--no-sandbox', '--disable-background-networking', '--use-angle=swiftshader',
-    '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
-});
+const browser = await launch();
 const errors = [];
 const report = { errors, results: {} };
 let step = 'launch';
@@ -35,7 +30,6 @@ const watchdog = setTimeout(() => {
   process.exit(1);
 }, 240_000);
 
-const frames = (page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
 const server = async (url, path) => (await fetch(new URL(path, url))).json();
 
 try {

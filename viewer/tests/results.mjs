@@ -12,7 +12,7 @@
 //         | path (a winding result without a program)
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { chromium } from 'playwright-core';
+import { frames, launch, recordErrors } from './driver.mjs';
 import { canvases } from './canvas.mjs';
 
 const [kind, url, shots, out] = process.argv.slice(2);
@@ -22,12 +22,7 @@ if (!kind || !url || !shots || !out) {
 }
 mkdirSync(shots, { recursive: true });
 
-const browser = await chromium.launch({
-  executablePath: process.env.FORMCAM_CHROMIUM ?? '/usr/bin/chromium',
-  headless: true,
-  args: ['--no-sandbox', '--disable-background-networking', '--use-angle=swiftshader',
-    '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
-});
+const browser = await launch();
 const errors = [];
 let step = 'launch';
 const watchdog = setTimeout(() => {
@@ -35,7 +30,6 @@ const watchdog = setTimeout(() => {
   writeFileSync(out, JSON.stringify({ errors }, null, 1));
   process.exit(1);
 }, 240_000);
-
 
 /** The value cells of every plot's legend, as shown (uPlot writes `--`
  * where it has no value). */
@@ -54,15 +48,10 @@ const pixelsOf = (page, selector, rgb) => page.evaluate(([sel, [r, g, b]]) => {
   return n;
 }, [selector, rgb]);
 
-const frames = (page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
-
 try {
   const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
   page.setDefaultTimeout(120_000);
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
-  page.on('pageerror', (e) => errors.push(`page: ${e}`));
-  page.on('requestfailed', (r) => errors.push(`request failed: ${r.url()}`));
-  page.on('request', (r) => { if (!r.url().startsWith(url)) errors.push(`outside request: ${r.url()}`); });
+  recordErrors(page, errors, url);
   step = 'open';
   await page.goto(url);
   await page.evaluate(() => window.formcam.ready);

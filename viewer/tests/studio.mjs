@@ -13,7 +13,7 @@
 //   one that takes seconds.
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { chromium } from 'playwright-core';
+import { frames, launch, recordErrors } from './driver.mjs';
 import { canvases } from './canvas.mjs';
 
 const [url, shots, out, field, first, second, bad, slow] = process.argv.slice(2);
@@ -23,12 +23,7 @@ if (!url || !shots || !out || !field || first === undefined || second === undefi
 }
 mkdirSync(shots, { recursive: true });
 
-const browser = await chromium.launch({
-  executablePath: process.env.FORMCAM_CHROMIUM ?? '/usr/bin/chromium',
-  headless: true,
-  args: ['--no-sandbox', '--disable-background-networking', '--use-angle=swiftshader',
-    '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
-});
+const browser = await launch();
 const errors = [];
 const report = { errors };
 let step = 'launch';
@@ -41,7 +36,6 @@ const watchdog = setTimeout(() => {
 /** A number typed as the test was given it (`55` a number, `auto` a word). */
 const value = (v) => (Number.isFinite(Number(v)) && v.trim() !== '' ? Number(v) : v);
 const state = (page) => page.evaluate(() => window.formcamStudio.state());
-const frames = (page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
 
 /** The result frame showing run `name`. */
 const resultFrame = (page, name) => page.frames().find((f) => f.url().includes(`/runs/${encodeURIComponent(name)}/`));
@@ -85,10 +79,7 @@ const fieldShown = (page, f) => page.evaluate((path) => {
 try {
   const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
   page.setDefaultTimeout(120_000);
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
-  page.on('pageerror', (e) => errors.push(`page: ${e}`));
-  page.on('requestfailed', (r) => errors.push(`request failed: ${r.url()}`));
-  page.on('request', (r) => { if (!r.url().startsWith(url)) errors.push(`outside request: ${r.url()}`); });
+  recordErrors(page, errors, url);
   step = 'open';
   await page.goto(url);
   await page.waitForFunction(() => window.formcamStudio !== undefined);

@@ -21,10 +21,8 @@
 
 mod common;
 
-use std::path::Path;
-use std::process::{Command, Output, Stdio};
-use std::time::{Duration, Instant};
 
+use common::browser::{browser_present, driver};
 use common::{Running, formcam, get, repo, s, scratch, serving, stderr, wind_ok};
 use serde_json::Value;
 
@@ -78,59 +76,6 @@ fn a_path_that_is_no_folder_nor_job_fails_with_exit_2_naming_it() {
             assert!(e.contains(s(&bad)), "{e}");
         }
     }
-}
-
-/// Whether the browser test can run here; fails when it must.
-fn browser_present() -> bool {
-    let missing: Vec<&str> = [
-        (!Path::new("/usr/bin/chromium").is_file())
-            .then_some("/usr/bin/chromium (apt-get install chromium)"),
-        (!repo().join("viewer/node_modules/playwright-core").is_dir())
-            .then_some("viewer/node_modules (npm ci in viewer/)"),
-        (!formcam_view::Page::is_embedded())
-            .then_some("the built page (npm run build in viewer/, then cargo build)"),
-    ]
-    .into_iter()
-    .flatten()
-    .collect();
-    if !missing.is_empty() {
-        assert!(
-            std::env::var("FORMCAM_REQUIRE_BROWSER").as_deref() != Ok("1"),
-            "FORMCAM_REQUIRE_BROWSER=1 but missing: {}",
-            missing.join(", ")
-        );
-        eprintln!("skipped: the browser test needs {}", missing.join(", "));
-    }
-    missing.is_empty()
-}
-
-/// The most the browser driver may take; it bounds itself (270 s), this is
-/// the last resort.
-const DRIVER_LIMIT: Duration = Duration::from_secs(330);
-
-/// Runs `viewer/tests/studio.mjs` with `args`, killed past [`DRIVER_LIMIT`].
-fn driver(args: &[&str], report: &Path) -> Output {
-    let mut child = Command::new("node")
-        .arg(repo().join("viewer/tests/studio.mjs"))
-        .args(args)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let started = Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if started.elapsed() > DRIVER_LIMIT {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!(
-                "the browser driver did not end within {} s; its report so far: {}",
-                DRIVER_LIMIT.as_secs(),
-                std::fs::read_to_string(report).unwrap_or_default()
-            );
-        }
-        std::thread::sleep(Duration::from_millis(100));
-    }
-    child.wait_with_output().unwrap()
 }
 
 /// The job the studio edits: a tube wound helically on the 4-axis winder,
@@ -201,6 +146,7 @@ fn the_studio_edits_runs_refuses_saves_and_cancels_a_winding_job() {
     let report = dir.join("studio.json");
     let shots = repo().join("target/screenshots");
     let node = driver(
+        "studio.mjs",
         &[
             &st.url,
             s(&shots),

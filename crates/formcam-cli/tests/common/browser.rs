@@ -32,9 +32,10 @@ pub fn browser_present() -> bool {
     missing.is_empty()
 }
 
-/// The most the browser driver may take; it bounds itself (a page not
-/// ready within 45 s, the whole run within 150 s), this is the last resort.
-pub const DRIVER_LIMIT: Duration = Duration::from_secs(300);
+/// The most a browser driver may take; each bounds itself (a page not
+/// ready within 45 s, the whole run within 150 to 280 s), this is the last
+/// resort.
+pub const DRIVER_LIMIT: Duration = Duration::from_secs(330);
 
 /// Runs `viewer/tests/SCRIPT` with `args`, killed past [`DRIVER_LIMIT`]
 /// (`report`: the file it writes, quoted when it is killed).

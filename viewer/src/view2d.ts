@@ -135,13 +135,15 @@ export class View2d {
       const sx = Math.round(this.px(x)) + 0.5;
       ctx.strokeStyle = Math.abs(x) < step / 2 ? '#b8bcc8' : '#eceef2';
       ctx.beginPath(); ctx.moveTo(sx, 0); ctx.lineTo(sx, h); ctx.stroke();
-      ctx.fillText(label(x, step), sx + 2, h - 4);
+      // Not under the axis's name in the bottom corner.
+      if (sx < w - 80) ctx.fillText(label(x, step), sx + 2, h - 4);
     }
     for (let y = Math.ceil(y0 / step) * step; y <= y1; y += step) {
       const sy = Math.round(this.py(y)) + 0.5;
       ctx.strokeStyle = Math.abs(y) < step / 2 ? '#b8bcc8' : '#eceef2';
       ctx.beginPath(); ctx.moveTo(0, sy); ctx.lineTo(w, sy); ctx.stroke();
-      ctx.fillText(label(y, step), 2, sy - 2);
+      // Not under the axis's name in the top corner.
+      if (sy > 26) ctx.fillText(label(y, step), 2, sy - 2);
     }
     ctx.fillStyle = '#445';
     ctx.fillText(`${this.labels[0]} →`, w - 70, h - 18);

@@ -135,8 +135,7 @@ export class View2d {
       const sx = Math.round(this.px(x)) + 0.5;
       ctx.strokeStyle = Math.abs(x) < step / 2 ? '#b8bcc8' : '#eceef2';
       ctx.beginPath(); ctx.moveTo(sx, 0); ctx.lineTo(sx, h); ctx.stroke();
-      // Not under the axis's name in the bottom corner.
-      if (sx < w - 80) ctx.fillText(label(x, step), sx + 2, h - 4);
+      ctx.fillText(label(x, step), sx + 2, h - 4);
     }
     for (let y = Math.ceil(y0 / step) * step; y <= y1; y += step) {
       const sy = Math.round(this.py(y)) + 0.5;

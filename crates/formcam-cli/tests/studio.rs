@@ -21,7 +21,6 @@
 
 mod common;
 
-
 use common::browser::{browser_present, driver};
 use common::{Running, formcam, get, repo, s, scratch, serving, stderr, wind_ok};
 use serde_json::Value;

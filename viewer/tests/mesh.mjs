@@ -9,7 +9,7 @@
 //   node viewer/tests/mesh.mjs URL SCREENSHOT_DIR OUT_JSON [MISSING_URL]
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { launch } from './driver.mjs';
+import { launch, recordErrors } from './driver.mjs';
 
 /** Seconds the page has to become ready; the whole run's bound. */
 const READY_S = Number(process.env.FORMCAM_READY_S ?? 45);

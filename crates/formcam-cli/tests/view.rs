@@ -44,6 +44,18 @@ fn result(name: &str) -> PathBuf {
     out
 }
 
+/// The result folder of `formcam VERB.. examples/EXAMPLE -o OUT`, written in
+/// the scratch folder `name`.
+fn example_result(name: &str, verb: &[&str], example: &str) -> PathBuf {
+    let out = scratch(name).join("out");
+    let job = repo().join("examples").join(example);
+    let mut args = verb.to_vec();
+    args.extend([s(&job), "-o", s(&out)]);
+    let o = formcam().args(&args).output().unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    out
+}
+
 #[test]
 fn view_prints_its_address_first_and_serves_the_page_or_names_the_setup_command() {
     let out = result("serve");
@@ -357,13 +369,7 @@ fn the_browser_plays_the_dressing_at_the_points_the_server_computes() {
     if !browser_present() {
         return;
     }
-    let out = scratch("browser-dress").join("out");
-    let job = repo().join("examples/dress-ballscrew-nut.toml");
-    let o = formcam()
-        .args(["dress", s(&job), "-o", s(&out)])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", stderr(&o));
+    let out = example_result("browser-dress", &["dress"], "dress-ballscrew-nut.toml");
     let r = drive("dressing", &out);
     assert!(drawn(&r["first"][0]) && drawn(&r["mrr"][0]), "{r:#}");
     assert_ne!(
@@ -412,13 +418,11 @@ fn the_browser_pauses_zooms_and_links_the_dressing_views() {
     if !browser_present() {
         return;
     }
-    let out = scratch("browser-dress-views").join("out");
-    let job = repo().join("examples/dress-ballscrew-nut.toml");
-    let o = formcam()
-        .args(["dress", s(&job), "-o", s(&out)])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", stderr(&o));
+    let out = example_result(
+        "browser-dress-views",
+        &["dress"],
+        "dress-ballscrew-nut.toml",
+    );
     let v = view(&out);
     let report = out.parent().unwrap().join("dressing-views.json");
     let shots = repo().join("target/screenshots");
@@ -571,13 +575,7 @@ fn the_browser_maps_every_measured_point_of_a_correction() {
     if !browser_present() {
         return;
     }
-    let out = scratch("browser-correct").join("out");
-    let job = repo().join("examples/correct-mould.toml");
-    let o = formcam()
-        .args(["correct", s(&job), "-o", s(&out)])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", stderr(&o));
+    let out = example_result("browser-correct", &["correct"], "correct-mould.toml");
     let r = drive("correction", &out);
     let cmm = std::fs::read_to_string(repo().join("examples/correct/cmm.csv")).unwrap();
     let points = cmm.lines().skip(1).filter(|l| !l.trim().is_empty()).count();
@@ -678,13 +676,11 @@ fn the_browser_opens_a_closed_loop_with_the_map_of_each_round() {
     if !browser_present() {
         return;
     }
-    let out = scratch("browser-loop").join("out");
-    let job = repo().join("examples/correct-panel-loop.toml");
-    let o = formcam()
-        .args(["correct", "simulate", s(&job), "-o", s(&out)])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", stderr(&o));
+    let out = example_result(
+        "browser-loop",
+        &["correct", "simulate"],
+        "correct-panel-loop.toml",
+    );
     let r = drive("loop", &out);
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
@@ -961,13 +957,11 @@ fn the_browser_opens_a_winding_path_without_a_program() {
     if !browser_present() {
         return;
     }
-    let out = scratch("browser-path").join("out");
-    let job = repo().join("examples/vessel-eye-pull-speed.toml");
-    let o = formcam()
-        .args(["wind", "eye", s(&job), "-o", s(&out)])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", stderr(&o));
+    let out = example_result(
+        "browser-path",
+        &["wind", "eye"],
+        "vessel-eye-pull-speed.toml",
+    );
     assert!(!out.join("blocks.csv").exists());
     let r = drive("path", &out);
     let (state, expected) = (&r["state"], &r["expected"]);

@@ -77,6 +77,28 @@ export function legendValue(_u: uPlot, v: number | null): string {
   return v === null || v === undefined || !Number.isFinite(v) ? '' : String(+v.toPrecision(6));
 }
 
+/** The decimals that write `step` exactly (at most 12). */
+export function decimalsOf(step: number): number {
+  for (let d = 0; d < 12; d++) {
+    const v = step * 10 ** d;
+    if (Math.abs(v - Math.round(v)) <= 1e-6 * Math.max(v, 1)) return d;
+  }
+  return 12;
+}
+
+/** Tick labels with the decimals the step between ticks needs, so that
+ * close ticks (a pull speed near 1) read apart. */
+export function tickValues(_u: uPlot, splits: number[], _axis: number, _space: number, step: number): string[] {
+  const d = decimalsOf(step);
+  return splits.map((v) => v.toLocaleString('en', { minimumFractionDigits: d, maximumFractionDigits: d }));
+}
+
+/** A value axis wide enough for its longest tick label and its name. */
+export function axisSize(_u: uPlot, values: string[] | null): number {
+  const longest = Math.max(0, ...(values ?? []).map((v) => v.length));
+  return Math.max(50, 7 * longest + 30);
+}
+
 /** Shows row `idx` in `u`'s legend (blank values with none) while the
  * pointer is off the plot; under the pointer uPlot shows its row. */
 export function legendAt(u: uPlot, idx: number | null): void {
@@ -105,6 +127,7 @@ export function chart(
     scales[key] = { range: spanRange, ...(scales[key] ?? {}) };
   }
   const series = opts.series.map((s) => ({ value: legendValue, ...s }));
+  const axes = opts.axes?.map((a, i) => ({ values: tickValues, ...(i > 0 ? { size: axisSize } : {}), ...a }));
   const atRest = (u: uPlot) => legendAt(u, rest());
   const hooks: uPlot.Hooks.Arrays = {
     ...(opts.hooks ?? {}),
@@ -112,7 +135,7 @@ export function chart(
     setCursor: [...(opts.hooks?.setCursor ?? []), atRest],
   };
   return new uPlot(
-    { width: Math.max(host.clientWidth - 24, 320), height, title, ...opts, series, scales, hooks },
+    { width: Math.max(host.clientWidth - 24, 320), height, title, ...opts, series, scales, hooks, ...(axes ? { axes } : {}) },
     data,
     div,
   );

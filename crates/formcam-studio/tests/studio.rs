@@ -81,7 +81,7 @@ fn raw(addr: SocketAddr, request: &[u8]) -> (u16, Vec<u8>) {
 fn get(addr: SocketAddr, url: &str) -> (u16, Value) {
     let (status, body) = raw(
         addr,
-        format!("GET {url} HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").as_bytes(),
+        format!("GET {url} HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n").as_bytes(),
     );
     (status, serde_json::from_slice(&body).unwrap_or(Value::Null))
 }
@@ -91,7 +91,7 @@ fn post(addr: SocketAddr, url: &str, body: &Value) -> (u16, Value) {
     let (status, answer) = raw(
         addr,
         format!(
-            "POST {url} HTTP/1.1\r\nHost: x\r\nConnection: close\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
+            "POST {url} HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
             body.len()
         )
         .as_bytes(),
@@ -219,13 +219,15 @@ fn a_run_through_the_server_is_the_saved_job_s_wind() {
     for url in ["/".to_string(), format!("/runs/{name}/")] {
         let (code, page) = raw(
             addr,
-            format!("GET {url} HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").as_bytes(),
+            format!("GET {url} HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n")
+                .as_bytes(),
         );
         assert_eq!((code, page.as_slice()), (200, PAGE.as_bytes()), "{url}");
     }
     let (code, _) = raw(
         addr,
-        format!("GET /runs/{name} HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").as_bytes(),
+        format!("GET /runs/{name} HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n")
+            .as_bytes(),
     );
     assert_eq!(code, 308);
     let (code, kind) = get(addr, &format!("/runs/{name}/api/kind"));
@@ -364,20 +366,32 @@ fn paths_out_of_the_folder_and_bad_requests_are_refused() {
     // No JSON, a body too long, a method not served.
     let (status, _) = raw(
         addr,
-        b"POST /api/studio/apply HTTP/1.1\r\nHost: x\r\nContent-Type: text/plain\r\nContent-Length: 2\r\n\r\n{}",
+        b"POST /api/studio/apply HTTP/1.1\r\nHost: localhost\r\nContent-Type: text/plain\r\nContent-Length: 2\r\n\r\n{}",
     );
     assert_eq!(status, 415);
     let (status, _) = raw(
         addr,
         format!(
-            "POST /api/studio/apply HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n",
+            "POST /api/studio/apply HTTP/1.1\r\nHost: localhost\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n",
             2 * formcam_studio::MAX_BODY_BYTES
         )
         .as_bytes(),
     );
     assert_eq!(status, 413);
-    let (status, _) = raw(addr, b"DELETE /api/studio HTTP/1.1\r\nHost: x\r\n\r\n");
+    let (status, _) = raw(
+        addr,
+        b"DELETE /api/studio HTTP/1.1\r\nHost: localhost\r\n\r\n",
+    );
     assert_eq!(status, 405);
+    // A page of another site whose name points here (DNS rebinding) saves nothing.
+    let mut save = body.clone();
+    save["file"] = json!("vessel.toml");
+    let rebound = format!(
+        "POST /api/studio/save HTTP/1.1\r\nHost: evil.example:80\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n{save}",
+        save.to_string().len()
+    );
+    let (status, _) = raw(addr, rebound.as_bytes());
+    assert_eq!(status, 403);
     let (status, _) = post(addr, "/api/studio/apply", &json!({"nonsense": 1}));
     assert_eq!(status, 400);
     assert_eq!(tree(&outer), before, "nothing written");

@@ -34,6 +34,10 @@ pub enum Refusal {
     /// Nothing there (or outside the result folder).
     #[error("not found")]
     NotFound,
+    /// A `Host` other than this machine's loopback names: a page of
+    /// another site whose name was pointed at 127.0.0.1 (DNS rebinding).
+    #[error("only 127.0.0.1, localhost and [::1] are served as the host")]
+    Host,
 }
 
 impl Refusal {
@@ -46,8 +50,27 @@ impl Refusal {
             Refusal::Body => 413,
             Refusal::Path => 400,
             Refusal::NotFound => 404,
+            Refusal::Host => 403,
         }
     }
+}
+
+/// Whether a request's `Host` header names this machine's loopback
+/// (`127.0.0.1`, `localhost` or `[::1]`, any port); no header is taken as
+/// the loopback (HTTP/1.0).
+pub fn loopback_host(host: Option<&[u8]>) -> bool {
+    let Some(host) = host else {
+        return true;
+    };
+    let Ok(host) = std::str::from_utf8(host) else {
+        return false;
+    };
+    let name = match host.strip_prefix('[') {
+        // An IPv6 literal: up to its closing bracket.
+        Some(rest) => rest.split(']').next().unwrap_or(""),
+        None => host.split(':').next().unwrap_or(""),
+    };
+    name == "127.0.0.1" || name.eq_ignore_ascii_case("localhost") || name == "::1"
 }
 
 /// A URL split into its decoded path segments and its query.
@@ -148,6 +171,32 @@ mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used)]
 
     use super::*;
+
+    #[test]
+    fn only_loopback_hosts_are_served() {
+        for ok in [
+            None,
+            Some("127.0.0.1:8080"),
+            Some("127.0.0.1"),
+            Some("localhost:41234"),
+            Some("LOCALHOST"),
+            Some("[::1]:80"),
+        ] {
+            assert!(loopback_host(ok.map(str::as_bytes)), "{ok:?}");
+        }
+        for bad in [
+            "evil.example:8080",
+            "127.0.0.1.evil.example",
+            "localhost.evil.example:80",
+            "[::2]:80",
+            "10.0.0.1:8080",
+            "",
+        ] {
+            assert!(!loopback_host(Some(bad.as_bytes())), "{bad}");
+        }
+        assert!(!loopback_host(Some(b"\xff:80")));
+        assert_eq!(Refusal::Host.status(), 403);
+    }
 
     #[test]
     fn plain_paths_split_and_decode() {

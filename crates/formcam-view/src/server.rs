@@ -27,7 +27,7 @@ use crate::overlay::{Overlay, Shown};
 use crate::page::Page;
 use crate::pathview::PathView;
 use crate::plots::WindingPlots;
-use crate::request::{MAX_HEADER_BYTES, MAX_URL_BYTES, Refusal, Target, file_under};
+use crate::request::{MAX_HEADER_BYTES, MAX_URL_BYTES, Refusal, Target, file_under, loopback_host};
 use crate::scene::{MachineScene, MandrelScene};
 use crate::timeline::{Timeline, TimelineHead};
 
@@ -637,7 +637,8 @@ fn refusal(request: &Request) -> Option<Refusal> {
 }
 
 /// Why any request is refused by its head alone: a URL longer than
-/// [`MAX_URL_BYTES`], headers longer than [`MAX_HEADER_BYTES`].
+/// [`MAX_URL_BYTES`], headers longer than [`MAX_HEADER_BYTES`], a `Host`
+/// that is not this machine's loopback ([`loopback_host`]).
 pub fn head_refusal(request: &Request) -> Option<Refusal> {
     let header_bytes: usize = request
         .headers()
@@ -648,6 +649,8 @@ pub fn head_refusal(request: &Request) -> Option<Refusal> {
         Some(Refusal::UrlTooLong)
     } else if header_bytes > MAX_HEADER_BYTES {
         Some(Refusal::HeadersTooLarge)
+    } else if !loopback_host(request.headers().get(header::HOST).map(|v| v.as_bytes())) {
+        Some(Refusal::Host)
     } else {
         None
     }

@@ -126,8 +126,10 @@ fn start(dir: &Path) -> std::net::SocketAddr {
 /// A GET: status and body.
 fn get(addr: std::net::SocketAddr, url: &str) -> (u16, Vec<u8>) {
     let mut s = TcpStream::connect(addr).unwrap();
-    s.write_all(format!("GET {url} HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").as_bytes())
-        .unwrap();
+    s.write_all(
+        format!("GET {url} HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n").as_bytes(),
+    )
+    .unwrap();
     let mut out = Vec::new();
     let _ = s.read_to_end(&mut out);
     let i = out.windows(4).position(|w| w == b"\r\n\r\n").unwrap();

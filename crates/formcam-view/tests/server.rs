@@ -124,8 +124,10 @@ fn raw(server: &Probe, request: &[u8]) -> (u16, Vec<u8>) {
 /// A GET with its response's head.
 fn get_with_head(server: &Probe, url: &str) -> (u16, String, Vec<u8>) {
     let mut s = TcpStream::connect(server.addr).unwrap();
-    s.write_all(format!("GET {url} HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").as_bytes())
-        .unwrap();
+    s.write_all(
+        format!("GET {url} HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n").as_bytes(),
+    )
+    .unwrap();
     let mut out = Vec::new();
     let _ = s.read_to_end(&mut out);
     let i = out.windows(4).position(|w| w == b"\r\n\r\n").unwrap();
@@ -319,8 +321,10 @@ fn traversal_other_methods_and_oversized_requests_are_refused() {
     for method in ["POST", "PUT", "DELETE", "HEAD", "OPTIONS"] {
         let (status, _) = raw(
             &server,
-            format!("{method} /api/result HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")
-                .as_bytes(),
+            format!(
+                "{method} /api/result HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n"
+            )
+            .as_bytes(),
         );
         assert_eq!(status, 405, "{method}");
     }
@@ -328,17 +332,23 @@ fn traversal_other_methods_and_oversized_requests_are_refused() {
     assert_eq!(get(&server, &long).0, 414);
     let (status, _) = raw(
         &server,
-        b"GET /api/result HTTP/1.1\r\nHost: x\r\nContent-Length: 5\r\nConnection: close\r\n\r\nhello",
+        b"GET /api/result HTTP/1.1\r\nHost: localhost\r\nContent-Length: 5\r\nConnection: close\r\n\r\nhello",
     );
     assert_eq!(status, 413);
     let big = format!(
-        "GET /api/result HTTP/1.1\r\nHost: x\r\nX-Big: {}\r\nConnection: close\r\n\r\n",
+        "GET /api/result HTTP/1.1\r\nHost: localhost\r\nX-Big: {}\r\nConnection: close\r\n\r\n",
         "b".repeat(20_000)
     );
     let (status, _) = raw(&server, big.as_bytes());
     assert!(status == 431 || status == 400, "{status}");
     assert_eq!(get(&server, "/api/timeline?samples=x").0, 400);
     assert_eq!(get(&server, "/api/sample?t=nan").0, 400);
+    // A page of another site whose name points here (DNS rebinding).
+    let (status, body) = raw(
+        &server,
+        b"GET /api/result HTTP/1.1\r\nHost: evil.example:80\r\nConnection: close\r\n\r\n",
+    );
+    assert_eq!(status, 403, "{}", String::from_utf8_lossy(&body));
 }
 
 #[test]
@@ -546,7 +556,8 @@ fn connections_kept_open_do_not_hold_back_new_ones() {
     let server = start(&dir);
     let ask = |s: &mut TcpStream, url: &str| {
         s.write_all(
-            format!("GET {url} HTTP/1.1\r\nHost: x\r\nConnection: keep-alive\r\n\r\n").as_bytes(),
+            format!("GET {url} HTTP/1.1\r\nHost: localhost\r\nConnection: keep-alive\r\n\r\n")
+                .as_bytes(),
         )
         .unwrap();
     };

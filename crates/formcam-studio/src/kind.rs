@@ -63,8 +63,9 @@ impl StudioKind {
     /// The kind of the job whose text is `text`, by its top-level tables
     /// as `formcam-run`'s `JobKind::of` tells them (`[surface]` and
     /// `[warp]` a scenario, `[correct]`, `[wheel]`, else a winding job when
-    /// it has a winding table); `None` for a text that is no TOML or has
-    /// none of these tables.
+    /// it has a winding table); `None` for a text that is no TOML, has
+    /// none of these tables, or is a machine file (its `[machine]` table is
+    /// also a winding job's, its `[[link]]`s are no job's).
     pub fn of(text: &str) -> Option<Self> {
         let table = text.parse::<toml::Table>().ok()?;
         Self::of_tables(&table)
@@ -72,7 +73,9 @@ impl StudioKind {
 
     /// [`StudioKind::of`] for a job's top-level table already parsed.
     pub fn of_tables(table: &toml::Table) -> Option<Self> {
-        if ScenarioJob::is_scenario(table) {
+        if table.contains_key("link") {
+            None
+        } else if ScenarioJob::is_scenario(table) {
             Some(StudioKind::Scenario)
         } else if CorrectionJob::is_job(table) {
             Some(StudioKind::Correction)

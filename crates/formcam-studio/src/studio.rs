@@ -247,7 +247,7 @@ impl Studio {
                 let name = e.file_name().to_str()?.to_string();
                 job_path(Path::new(""), &name).ok()?;
                 let text = formcam_files::read_text(&e.path()).ok()?;
-                Some((name, job_kind(&text)?))
+                Some((name, StudioKind::of(&text)?))
             })
             .collect();
         jobs.sort();
@@ -260,7 +260,7 @@ impl Studio {
     fn job(&self, file: &str) -> Result<Answer, Answer> {
         let path = self.job_path(file)?;
         let text = formcam_files::read_text(&path).map_err(|e| Answer::error(404, e))?;
-        let kind = job_kind(&text).ok_or_else(|| {
+        let kind = StudioKind::of(&text).ok_or_else(|| {
             Answer::error(
                 422,
                 StudioError::NotAJob {
@@ -408,17 +408,6 @@ fn parse<T: for<'de> Deserialize<'de>>(body: &[u8]) -> Result<T, Answer> {
     serde_json::from_slice(body).map_err(|e| Answer::error(400, format!("the request: {e}")))
 }
 
-/// The kind of the job whose text is `text`; `None` for a text that is no
-/// job, such as a machine file (its `[machine]` table is also a winding
-/// job's, its `[[link]]`s are no job's).
-fn job_kind(text: &str) -> Option<StudioKind> {
-    let table = text.parse::<toml::Table>().ok()?;
-    if table.contains_key("link") {
-        return None;
-    }
-    StudioKind::of_tables(&table)
-}
-
 /// The file name of the job file at `path`, if it is one of a known kind.
 fn job_file_name(path: &Path) -> Result<String, StudioError> {
     let not = || StudioError::NotAJob {
@@ -430,7 +419,7 @@ fn job_file_name(path: &Path) -> Result<String, StudioError> {
         .filter(|n| job_path(Path::new(""), n).is_ok())
         .ok_or_else(not)?;
     let text = formcam_files::read_text(path).map_err(|_| not())?;
-    job_kind(&text).ok_or_else(not)?;
+    StudioKind::of(&text).ok_or_else(not)?;
     Ok(name.to_string())
 }
 

@@ -288,6 +288,16 @@ impl Studio {
         Ok(apply_job(e.kind, &self.dir, file, &e.text, &e.values))
     }
 
+    /// The edited text of a job that checks clean; else its errors (422).
+    fn checked(&self, e: &Edit) -> Result<String, Answer> {
+        let Applied { ok, text, errors } = self.edited(e)?;
+        if ok {
+            Ok(text)
+        } else {
+            Err(Answer::json(422, &json!({"ok": false, "errors": errors})))
+        }
+    }
+
     /// `/api/studio/apply`: the new text and every error at its field.
     fn apply(&self, e: &Edit) -> Answer {
         Answer::of(self.edited(e).map(|a| Answer::json(200, &json!(a))))
@@ -296,10 +306,7 @@ impl Studio {
     /// `/api/studio/run`: a job that checks clean starts (the running one
     /// cancelled); else its errors, and nothing runs.
     fn run(&self, e: &Edit) -> Result<Answer, Answer> {
-        let Applied { ok, text, errors } = self.edited(e)?;
-        if !ok {
-            return Err(Answer::json(422, &json!({"ok": false, "errors": errors})));
-        }
+        let text = self.checked(e)?;
         let name = self
             .runs
             .run(RunOrder {
@@ -318,10 +325,7 @@ impl Studio {
             .file
             .as_deref()
             .ok_or_else(|| Answer::error(400, "give the job file's name to save it as"))?;
-        let Applied { ok, text, errors } = self.edited(e)?;
-        if !ok {
-            return Err(Answer::json(422, &json!({"ok": false, "errors": errors})));
-        }
+        let text = self.checked(e)?;
         save_job(&self.dir, file, &text).map_err(|err| Answer::error(400, err))?;
         Ok(Answer::json(
             200,

@@ -15,8 +15,7 @@ pub fn run(
     mandrel: Option<PathBuf>,
     output: Option<&Path>,
 ) -> Result<bool, CliError> {
-    let options = formcam_sim::CheckOptions { mandrel };
-    let run = formcam_sim::check_files_with(program, machine, &options)?;
+    let run = formcam_run::check(program, machine, mandrel.as_deref())?;
     if let Some(out) = output {
         let json = run.report_json()?;
         write_files(&[(out.to_path_buf(), json.as_bytes())], &run.inputs)?;

@@ -38,5 +38,5 @@ pub use machine::{Axis, Joint, JointKind, KeyPoint, Link, Machine, Roles, Shape,
 pub use mesh::{
     MeshError, MeshFault, MeshFormat, MeshPlace, TriMesh, parse_mesh, read_mesh, read_visual_mesh,
 };
-pub use target::{Target, placement_targets, winder_targets};
+pub use target::{PathPoint, Target};
 pub use urdf::links_from_urdf;

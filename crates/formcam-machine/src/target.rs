@@ -1,10 +1,9 @@
-//! What the machine must reach: targets in the mandrel frame, from an eye
-//! trajectory (winders) or from the path itself (fibre placement).
+//! What the machine must reach: targets in the mandrel frame, each made
+//! from a path point on the mandrel and the payout point there (a winder's
+//! eye, or a placement head's roller pressing on the path). The planner
+//! makes them from its own trajectories (formcam-program's `targets`).
 
-use formcam_geom::Meridian;
-use formcam_winding::eye::EyeTrajectory;
 use nalgebra::{Point3, Unit, Vector3};
-use rayon::prelude::*;
 
 /// One point the machine must reach, in the mandrel frame (`z` the mandrel's
 /// axis, `x` its `v = 0` direction).
@@ -29,9 +28,67 @@ pub struct Target {
     pub clearance_margin: f64,
 }
 
+/// A point of the path on a surface of revolution: where it is (`z`, `r`,
+/// the angle `v` about the axis), its angle `alpha` from the `+z` meridian
+/// and the meridian's slope `dr = r'(z)` there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PathPoint {
+    /// Along the axis, mm.
+    pub z: f64,
+    /// Radius, mm.
+    pub r: f64,
+    /// Angle about the axis, rad.
+    pub v: f64,
+    /// Angle from the `+z` meridian, rad.
+    pub alpha: f64,
+    /// The meridian's slope `r'(z)` (a non-finite slope counts as 0).
+    pub dr: f64,
+}
+
+impl Target {
+    /// A winder's target at circuit parameter `x`: the path point `p`, the
+    /// eye at `eye`, the free length `free_length` between them and the
+    /// eye's margin over the clearance zone.
+    pub fn winder(
+        x: f64,
+        p: &PathPoint,
+        eye: Point3<f64>,
+        free_length: f64,
+        clearance_margin: f64,
+    ) -> Self {
+        let (path_point, tau, normal) = frame(p);
+        Self {
+            x,
+            point: eye,
+            path_point,
+            band: Unit::new_normalize(tau),
+            normal: Unit::new_normalize(normal),
+            free_length,
+            clearance_margin,
+        }
+    }
+
+    /// A fibre-placement head's target at circuit parameter `x`: the path
+    /// point `p`, the compaction roller of radius `h` pressing there.
+    pub fn placement(x: f64, p: &PathPoint, h: f64) -> Self {
+        let (path_point, tau, normal) = frame(p);
+        Self {
+            x,
+            point: path_point + normal * h,
+            path_point,
+            band: Unit::new_normalize(tau),
+            normal: Unit::new_normalize(normal),
+            free_length: 0.0,
+            clearance_margin: f64::INFINITY,
+        }
+    }
+}
+
 /// The path point, its tangent `tau` (eqs. 8–9) and the outward normal, in the
 /// mandrel frame.
-fn frame(z: f64, r: f64, v: f64, alpha: f64, dr: f64) -> (Point3<f64>, Vector3<f64>, Vector3<f64>) {
+fn frame(p: &PathPoint) -> (Point3<f64>, Vector3<f64>, Vector3<f64>) {
+    let PathPoint { z, r, v, alpha, dr } = *p;
+    let dr = if dr.is_finite() { dr } else { 0.0 };
     let (sv, cv) = v.sin_cos();
     let (sa, ca) = alpha.sin_cos();
     let q = (1.0 + dr * dr).sqrt();
@@ -41,53 +98,4 @@ fn frame(z: f64, r: f64, v: f64, alpha: f64, dr: f64) -> (Point3<f64>, Vector3<f
     let tau = (e_z + e_r * dr) * (ca / q) + e_v * sa;
     let normal = (e_r - e_z * dr) / q;
     (Point3::new(r * cv, r * sv, z), tau, normal)
-}
-
-/// Targets of a winder: the eye points of `eye` (planned on `m`), each on
-/// its own (in parallel on rayon's pool for long trajectories).
-pub fn winder_targets<M: Meridian>(m: &M, eye: &EyeTrajectory) -> Vec<Target> {
-    eye.points
-        .par_iter()
-        .with_min_len(4096)
-        .map(|p| {
-            let dr = m.eval(p.z).dr;
-            let dr = if dr.is_finite() { dr } else { 0.0 };
-            let (path_point, tau, normal) = frame(p.z, p.r, p.v, p.alpha, dr);
-            let (se, ce) = p.eye_v.sin_cos();
-            Target {
-                x: p.x,
-                point: Point3::new(p.eye_r * ce, p.eye_r * se, p.eye_z),
-                path_point,
-                band: Unit::new_normalize(tau),
-                normal: Unit::new_normalize(normal),
-                free_length: p.l,
-                clearance_margin: p.margin,
-            }
-        })
-        .collect()
-}
-
-/// Targets of a fibre-placement head with a compaction roller of radius `h`:
-/// the path points `(x, z, r, v, alpha)` (`alpha` from the `+z` meridian) on `m`.
-pub fn placement_targets<M: Meridian>(
-    m: &M,
-    path: &[(f64, f64, f64, f64, f64)],
-    h: f64,
-) -> Vec<Target> {
-    path.iter()
-        .map(|&(x, z, r, v, alpha)| {
-            let dr = m.eval(z).dr;
-            let dr = if dr.is_finite() { dr } else { 0.0 };
-            let (path_point, tau, normal) = frame(z, r, v, alpha, dr);
-            Target {
-                x,
-                point: path_point + normal * h,
-                path_point,
-                band: Unit::new_normalize(tau),
-                normal: Unit::new_normalize(normal),
-                free_length: 0.0,
-                clearance_margin: f64::INFINITY,
-            }
-        })
-        .collect()
 }

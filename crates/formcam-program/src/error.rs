@@ -225,6 +225,54 @@ pub enum ProgramError {
     /// The program could not be written to its destination.
     #[error("cannot write the program: {0}")]
     Write(#[from] std::io::Error),
+    /// The simulator refused what the planner handed it for a check (a
+    /// layer's circuit the free fibre cannot follow).
+    #[error(transparent)]
+    Sim(Box<formcam_sim::SimError>),
+    /// The mandrel's solid of a layer could not be built for the collision
+    /// check (no finite radius).
+    #[error("layer {layer}: the mandrel's radius is not finite; no solid for the collision check")]
+    MandrelSolid {
+        /// The layer (1-based).
+        layer: usize,
+    },
+}
+
+impl From<formcam_sim::SimError> for ProgramError {
+    fn from(e: formcam_sim::SimError) -> Self {
+        Self::Sim(Box::new(e))
+    }
+}
+
+/// Why a winding job file could not be read for a check (`--mandrel JOB`,
+/// the view's check of a result): the file, or the job in it.
+#[derive(Debug, thiserror::Error)]
+pub enum JobFileError {
+    /// The file could not be read (not a regular file, too large, not UTF-8).
+    #[error("{}: {source}", source.path().display())]
+    Read {
+        /// The reason, with the path.
+        #[from]
+        source: formcam_files::ReadError,
+    },
+    /// The job could not be read or planned.
+    #[error("{}: {source}", path.display())]
+    Job {
+        /// The job file.
+        path: std::path::PathBuf,
+        /// What is wrong.
+        source: Box<ProgramError>,
+    },
+}
+
+impl JobFileError {
+    /// The job file `path`'s error `source`.
+    pub fn job(path: &std::path::Path, source: ProgramError) -> Self {
+        Self::Job {
+            path: path.to_path_buf(),
+            source: Box::new(source),
+        }
+    }
 }
 
 /// Why a Cyclone/FiberPath `.wind` document cannot be read: each variant

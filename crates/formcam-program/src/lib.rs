@@ -11,9 +11,11 @@ mod blocks;
 pub mod checks;
 mod error;
 mod job;
+mod mandrel_check;
 mod plan;
 mod post;
 mod size;
+mod targets;
 mod windfile;
 
 pub use blocks::{
@@ -21,9 +23,13 @@ pub use blocks::{
     planned_a_max,
 };
 pub use checks::{Check, ChecksJob, Violated};
-pub use error::{ProgramError, WindFileError, in_layer};
+pub use error::{JobFileError, ProgramError, WindFileError, in_layer};
 pub use job::{
     Ik, JobMachine, Layers, MachineSource, MotionJob, Post, Times, WINDING_JOB, WindImport, WindJob,
+};
+pub use mandrel_check::{
+    MandrelCheckBuilder, free_fibre, laminate, laminate_of_job, mandrel_check,
+    mandrel_check_of_file, read_job, wound_circuit,
 };
 pub use plan::{
     LayerBody, Stage, Wound, WoundLayer, WoundProgram, plan_each, plan_program, plan_until,
@@ -31,4 +37,5 @@ pub use plan::{
 };
 pub use post::write_program;
 pub use size::{LAYER_BATCH, ProgramSize, estimate};
+pub use targets::{placement_targets, winder_targets};
 pub use windfile::{EYE_CLEARANCE_MM, SPEC_VERSION};

@@ -4,9 +4,7 @@
 
 use formcam_geom::Cylinder;
 use formcam_machine::{AxisTrack, MachineKind, solve};
-use formcam_machine::{
-    BandPassed, Machine, Target, band_passed, placement_targets, winder_targets,
-};
+use formcam_machine::{BandPassed, Machine, Target, band_passed};
 use formcam_progress::{Phase, Progress, Silent, Step, Tally};
 use formcam_winding::eye::{EyeSpec, EyeTrajectory, eye_trajectory};
 use formcam_winding::job::{LayerKind, Mandrel, WindingSpec};
@@ -19,6 +17,7 @@ use crate::checks::{Violated, enforce, eye_violations};
 use crate::error::in_layer;
 use crate::job::{JobMachine, Layers, Post, WindJob};
 use crate::size::{LAYER_BATCH, estimate, kept_bytes, mib};
+use crate::targets::{placement_targets, winder_targets};
 
 /// How far the pipeline goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]

@@ -82,6 +82,14 @@ pub enum RunError {
         /// What failed.
         source: Box<formcam_sim::SimError>,
     },
+    /// A program could not be checked (`formcam check`): the program or
+    /// machine file, naming it.
+    #[error(transparent)]
+    Sim(Box<formcam_sim::SimError>),
+    /// The winding job a check takes its mandrel from (`--mandrel JOB`)
+    /// could not be read or planned, naming the file.
+    #[error(transparent)]
+    JobFile(#[from] formcam_program::JobFileError),
     /// `summary.json` could not be written.
     #[error("summary.json: {source}")]
     Summary {
@@ -94,6 +102,12 @@ pub enum RunError {
     /// The run was cancelled by its progress hook; nothing is written.
     #[error(transparent)]
     Cancelled(#[from] Cancelled),
+}
+
+impl From<formcam_sim::SimError> for RunError {
+    fn from(e: formcam_sim::SimError) -> Self {
+        Self::Sim(Box::new(e))
+    }
 }
 
 impl From<crate::correct::CorrectRunError> for RunError {

@@ -10,6 +10,7 @@
 //! ([`progress::Progress`]); a cancelled run is [`RunError::Cancelled`] and
 //! returns no files.
 
+mod check;
 mod correct;
 mod dress;
 mod error;
@@ -17,6 +18,7 @@ mod files;
 mod job;
 mod wind;
 
+pub use check::check;
 pub use correct::{
     CorrectRunError, Corrected, History, correct, correct_job, correct_job_with, correct_simulate,
     correct_simulate_with, correct_with, output_folder, read_measurements,

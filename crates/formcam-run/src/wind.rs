@@ -19,11 +19,10 @@ use formcam_machine::AxisTrack;
 use formcam_machine::BandPassed;
 use formcam_machine::Machine;
 use formcam_program::{
-    Assembled, Check, MachineSource, Post, ProgramError, Stage, WindJob, Wound, WoundLayer,
-    WoundProgram, nc, plan_each, plan_until_with, write_program,
+    Assembled, Check, MachineSource, MandrelCheckBuilder, Post, ProgramError, Stage, WindJob,
+    Wound, WoundLayer, WoundProgram, nc, plan_each, plan_until_with, write_program,
 };
 use formcam_progress::{Phase, Progress, Silent, Step};
-use formcam_sim::MandrelCheckBuilder;
 use formcam_winding::Layer;
 use formcam_winding::eye::EyeTrajectory;
 use serde_json::{Map, Value, json};
@@ -389,7 +388,9 @@ fn check_program(
         }
     };
     let fail = |source| check_error(path, source);
-    let mandrel = mandrel.finish(job, wound, path).map_err(fail)?;
+    let mandrel = mandrel
+        .finish(job, wound)
+        .map_err(|e| RunError::wind(path, e))?;
     let text = String::from_utf8_lossy(text);
     let report = formcam_sim::check_text_with(
         &program,

@@ -61,22 +61,6 @@ pub enum SimError {
     /// A mesh solid of the machine could not be read (naming its file).
     #[error("{0}")]
     Mesh(#[from] formcam_machine::MeshError),
-    /// The winding job given for the mandrel could not be read or planned.
-    #[error("{}: {source}", path.display())]
-    Job {
-        /// The job file.
-        path: PathBuf,
-        /// What is wrong.
-        source: Box<formcam_program::ProgramError>,
-    },
-    /// The mandrel's solid of a layer could not be built (no finite radius).
-    #[error("{}: layer {layer}: the mandrel's radius is not finite; no solid for the collision check", path.display())]
-    MandrelSolid {
-        /// The job file.
-        path: PathBuf,
-        /// The layer (1-based).
-        layer: usize,
-    },
     /// The free fibre cannot be followed along the program.
     #[error("free fibre: {what}")]
     Fibre {

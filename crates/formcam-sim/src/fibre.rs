@@ -1,7 +1,7 @@
 //! Where the free fibre is at each time of a winding program: from the
 //! payout point (forward kinematics of the program's axes) to its contact
-//! point on the mandrel, which the program does not hold and is recovered
-//! from the winding job planned again.
+//! point on the mandrel, which the program does not hold: the planner hands
+//! each wound layer's circuit on ([`WoundCircuit`]).
 //!
 //! The contact point is found by the mandrel's angle: within a layer the
 //! spindle turns one way, so the program's spindle angle at a time, less the
@@ -12,11 +12,8 @@
 //! is the one whose eye is nearest the program's payout point, in the
 //! path's own order.
 
-use std::path::Path;
-
 use formcam_geom::Meridian;
-use formcam_machine::{Fk, JointKind, Machine, MachineKind};
-use formcam_program::{LayerBody, Stage, WindJob, WoundLayer, WoundProgram, plan_until};
+use formcam_machine::{AxisTrack, Fk, JointKind, Machine, MachineKind, Target};
 use formcam_winding::job::Mandrel;
 use nalgebra::{Isometry3, Point3};
 
@@ -86,6 +83,26 @@ impl FibreLayer {
     }
 }
 
+/// One wound layer's planned circuit as the planner hands it to the fibre:
+/// what it was laid on and what the machine was asked to reach.
+#[derive(Debug, Clone, Copy)]
+pub struct WoundCircuit<'a> {
+    /// The layer's label (`layer 2 (helical)`).
+    pub label: &'a str,
+    /// The surface the layer is laid on (the mandrel grown by the layers
+    /// before).
+    pub mandrel: &'a Mandrel,
+    /// Where the surface's `z = 0` lies in the machine's mandrel frame, mm.
+    pub z_shift: f64,
+    /// The circuit's targets, one per row.
+    pub targets: &'a [Target],
+    /// The circuit's axes, one row per target (`None`: planned without the
+    /// machine's axes).
+    pub track: Option<&'a AxisTrack>,
+    /// Circuits in the layer.
+    pub circuits: u32,
+}
+
 /// The free fibre of a winding job on its machine: every wound layer's
 /// planned circuit, in winding order.
 #[derive(Debug, Clone)]
@@ -135,19 +152,6 @@ pub struct FibreTrack {
 }
 
 impl FreeFibre {
-    /// The fibre of a job planned to its program ([`Stage::Program`]) on a
-    /// winder, every layer kept whole.
-    pub fn from_wound(wound: &WoundProgram) -> Result<Self, SimError> {
-        let machine = wound.machine.clone().ok_or_else(|| SimError::Fibre {
-            what: "the job names no machine".into(),
-        })?;
-        let mut fibre = Self::new(machine)?;
-        for l in &wound.layers {
-            fibre.add(l)?;
-        }
-        Ok(fibre)
-    }
-
     /// A fibre on the winder `machine` with no layer yet ([`FreeFibre::add`]
     /// takes them in winding order).
     pub fn new(machine: Machine) -> Result<Self, SimError> {
@@ -169,12 +173,10 @@ impl FreeFibre {
         })
     }
 
-    /// The next layer of the program, planned to its program on this
-    /// fibre's machine: its first circuit's rows (a skip layer adds none).
-    pub fn add(&mut self, l: &WoundLayer) -> Result<(), SimError> {
-        let LayerBody::Wind(w) = &l.body else {
-            return Ok(());
-        };
+    /// The next wound layer of the program, planned to its program on this
+    /// fibre's machine: its first circuit's rows (skip layers are not
+    /// handed on).
+    pub fn add(&mut self, l: &WoundCircuit<'_>) -> Result<(), SimError> {
         let (machine, spindle) = (&self.machine, self.spindle);
         let nc = |a: usize, v: f64| {
             if machine.axes[a].kind == JointKind::Revolute {
@@ -183,12 +185,12 @@ impl FreeFibre {
                 v
             }
         };
-        let Some(track) = &w.track else {
+        let Some(track) = l.track else {
             return Err(SimError::Fibre {
                 what: format!("{}: planned without the machine's axes", l.label),
             });
         };
-        let n = w.targets.len();
+        let n = l.targets.len();
         if n < 2 || track.values.len() != n * track.width {
             return Err(SimError::Fibre {
                 what: format!("{}: fewer than two planned points", l.label),
@@ -208,38 +210,17 @@ impl FreeFibre {
             });
         }
         self.layers.push(FibreLayer {
-            label: l.label.clone(),
-            mandrel: w.mandrel.clone(),
-            z_shift: w.z_shift,
+            label: l.label.to_string(),
+            mandrel: l.mandrel.clone(),
+            z_shift: l.z_shift,
             spindle_deg,
-            contacts: w.targets.iter().map(|t| t.path_point).collect(),
-            eyes: w.targets.iter().map(|t| t.point).collect(),
+            contacts: l.targets.iter().map(|t| t.path_point).collect(),
+            eyes: l.targets.iter().map(|t| t.point).collect(),
             start,
-            circuits: w.layer.pattern.circuits.max(1),
+            circuits: l.circuits.max(1),
             circuit_turn_deg,
         });
         Ok(())
-    }
-
-    /// The fibre of the winding job `job`, planned again (every layer, to its
-    /// program).
-    pub fn plan(job: &WindJob) -> Result<Self, SimError> {
-        let wound = plan_until(job, Stage::Program).map_err(|e| SimError::Fibre {
-            what: format!("the job cannot be planned: {e}"),
-        })?;
-        Self::from_wound(&wound)
-    }
-
-    /// The fibre of the winding job file `path` (TOML, or a `.wind`
-    /// document with formcam's eye clearance), planned again; none when the
-    /// job writes no program (no machine or no eye: a mandrel and a path
-    /// only), so that no program was written from it.
-    pub fn from_job_file(path: &Path) -> Result<Option<Self>, SimError> {
-        let job = crate::read_job(path, None)?;
-        if job.furthest_stage() != Stage::Program {
-            return Ok(None);
-        }
-        Self::plan(&job.named(path)).map(Some)
     }
 
     /// The same fibre on `machine` (the job's machine with other solids, or

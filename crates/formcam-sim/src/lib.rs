@@ -21,14 +21,15 @@
 //!   [`ViolationKind::Collision`] naming both links.
 //! * [`FreeFibre`] — where the free fibre is at each time of a winding
 //!   program: the payout point by forward kinematics, the contact point on
-//!   the mandrel recovered from the winding job planned again, by the
-//!   spindle's angle; [`check_snag`] — the fibre must not cut the mandrel
-//!   nor come near a machine solid ([`SnagOptions`]).
-//! * [`MandrelCheck`] — a winding job planned once: its [`Laminate`] and its
-//!   [`FreeFibre`], from a job file or from the planning `formcam wind` has
-//!   done ([`MandrelCheckBuilder`] as each layer is planned).
-//! * [`check_files`] — the whole pipeline of `formcam check`: a program file
-//!   and a machine (file or shipped name) to a [`Report`] and its one line;
+//!   the mandrel from the planned circuits the planner hands on
+//!   ([`WoundCircuit`]), by the spindle's angle; [`check_snag`] — the fibre
+//!   must not cut the mandrel nor come near a machine solid
+//!   ([`SnagOptions`]).
+//! * [`MandrelCheck`] — what a winding job adds to a check: its
+//!   [`Laminate`] and its [`FreeFibre`], made by the planner (the simulator
+//!   never plans a job; it depends on no crate above it).
+//! * [`check_file`] — a program file checked on a [`CheckMachine`] (a
+//!   machine file or a shipped name) to a [`Report`] and its one line;
 //!   [`check_text_with`] the same check of a program text in memory.
 
 mod collision;
@@ -43,20 +44,20 @@ mod snag;
 mod timeline;
 
 pub use collision::{
-    Body, CHORD_TOLERANCE_MM, Collisions, Laminate, LaminateError, Mount, Pair, SIDES, exempt,
-    machine_bodies, revolution_solid, visual_shape,
+    Body, CHORD_TOLERANCE_MM, Collisions, Laminate, Mount, Pair, SIDES, exempt, machine_bodies,
+    revolution_solid, visual_shape,
 };
 pub use error::SimError;
 pub use feed::FeedRule;
-pub use fibre::{FibreLayer, FibreSampler, FibreState, FibreTrack, FreeFibre};
+pub use fibre::{FibreLayer, FibreSampler, FibreState, FibreTrack, FreeFibre, WoundCircuit};
 pub use limits::{
     AxisLimits, RELATIVE_TOLERANCE, RESOLUTION_DEG, RESOLUTION_MM, Violation, ViolationKind,
     check_timeline,
 };
-pub use mandrel_check::{MandrelCheck, MandrelCheckBuilder, read_job};
+pub use mandrel_check::MandrelCheck;
 pub use pipeline::{
-    CheckOptions, CheckRun, check_files, check_files_with, check_text, check_text_in,
-    check_text_with, program_axes, read_program,
+    CheckMachine, CheckRun, check_file, check_files, check_text, check_text_in, check_text_with,
+    program_axes, read_program,
 };
 pub use report::Report;
 pub use snag::{SnagOptions, check_snag, check_snag_exhaustive};

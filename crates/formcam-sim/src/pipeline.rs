@@ -186,58 +186,74 @@ fn check_read(
     })
 }
 
-/// What a check looks at besides the program and the machine.
-#[derive(Debug, Clone, Default, PartialEq, Eq)]
-pub struct CheckOptions {
-    /// The winding job (TOML or `.wind`) the program was written from
-    /// (`--mandrel JOB`), planned once into a [`MandrelCheck`]: its mandrel,
-    /// grown by its laminate layer by layer, is checked against the
-    /// machine's solids, and its free fibre ([`check_snag`] with
-    /// [`SnagOptions::default`]) against the mandrel and the solids.
-    pub mandrel: Option<PathBuf>,
+/// A machine a check runs on, as `formcam check --machine` names it: a
+/// machine file (TOML or URDF) or a shipped machine's name.
+#[derive(Debug, Clone)]
+pub struct CheckMachine {
+    /// The machine.
+    pub machine: Machine,
+    /// What names it in the report (the argument as given).
+    pub name: String,
+    /// The folder its mesh files are relative to (a machine file's).
+    pub mesh_dir: Option<PathBuf>,
+    /// The machine file read, if any (no output may overwrite it).
+    pub file: Option<PathBuf>,
+}
+
+impl CheckMachine {
+    /// The machine file `machine` (TOML or URDF), or a shipped machine's
+    /// name when no such file exists.
+    pub fn read(machine: &Path) -> Result<Self, SimError> {
+        let name = machine.to_string_lossy().into_owned();
+        let (m, mesh_dir, file) = match formcam_machine::shipped::shipped(&name) {
+            Some(s) if !machine.exists() => (s.machine(), None, None),
+            _ => {
+                let text = formcam_files::read_text(machine)?;
+                let m = Machine::from_file_text(machine, &text);
+                (m, machine.parent(), Some(machine.to_path_buf()))
+            }
+        };
+        let machine_error = |source| SimError::Machine {
+            path: machine.to_path_buf(),
+            source,
+        };
+        Ok(Self {
+            machine: m.map_err(machine_error)?,
+            name,
+            mesh_dir: mesh_dir.map(Path::to_path_buf),
+            file,
+        })
+    }
 }
 
 /// `formcam check PROGRAM --machine MACHINE`: reads the program file and the
 /// machine (a TOML or URDF file, or a shipped machine's name when no such
 /// file exists) and checks the program.
 pub fn check_files(program: &Path, machine: &Path) -> Result<CheckRun, SimError> {
-    check_files_with(program, machine, &CheckOptions::default())
+    check_file(program, &CheckMachine::read(machine)?, None)
 }
 
-/// [`check_files`] with `options`: the mandrel of a winding job. Mesh files
-/// are read relative to the machine file.
-pub fn check_files_with(
+/// Reads the program file `program` and checks it on `machine` (mesh files
+/// relative to the machine file), with a winding job's `mandrel` when given
+/// (its laminate against the machine's solids, its free fibre against the
+/// mandrel and the solids). The inputs named are the program and the
+/// machine file; the caller adds the job's.
+pub fn check_file(
     program: &Path,
-    machine: &Path,
-    options: &CheckOptions,
+    machine: &CheckMachine,
+    mandrel: Option<&MandrelCheck>,
 ) -> Result<CheckRun, SimError> {
     let mut inputs = vec![program.to_path_buf()];
-    let name = machine.to_string_lossy();
-    let mut mesh_dir = None;
-    let m = match formcam_machine::shipped::shipped(&name) {
-        Some(s) if !machine.exists() => s.machine(),
-        _ => {
-            mesh_dir = machine.parent();
-            let text = formcam_files::read_text(machine)?;
-            inputs.push(machine.to_path_buf());
-            Machine::from_file_text(machine, &text)
-        }
-    }
-    .map_err(|source| SimError::Machine {
-        path: machine.to_path_buf(),
-        source,
-    })?;
-    // The winding job planned once: its laminate and its free fibre (none
-    // for a job that writes no program: the mandrel's solid alone).
-    let mandrel = match &options.mandrel {
-        Some(job) => {
-            inputs.push(job.clone());
-            Some(MandrelCheck::from_job_file(job)?)
-        }
-        None => None,
-    };
+    inputs.extend(machine.file.clone());
     let text = formcam_files::read_text(program)?;
-    let report = check_text_with(program, &text, &m, &name, mesh_dir, mandrel.as_ref())?;
+    let report = check_text_with(
+        program,
+        &text,
+        &machine.machine,
+        &machine.name,
+        machine.mesh_dir.as_deref(),
+        mandrel,
+    )?;
     Ok(CheckRun {
         line: report.line(),
         report,

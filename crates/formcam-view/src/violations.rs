@@ -202,8 +202,9 @@ fn job_check(folder: &RunFolder, program: &ProgramFile) -> Result<MandrelCheck, 
         .summary
         .get("eye_clearance_mm")
         .and_then(Value::as_f64);
-    let wind = formcam_sim::read_job(&job, clearance).map_err(|e| e.to_string())?;
-    MandrelCheck::of_job(&wind, &job).map_err(|e| e.to_string())
+    let wind = formcam_program::read_job(&job, clearance).map_err(|e| e.to_string())?;
+    formcam_program::mandrel_check(&wind)
+        .map_err(|e| formcam_program::JobFileError::job(&job, e).to_string())
 }
 
 /// The `violations` of a report `formcam check` wrote.

@@ -3,15 +3,10 @@
 //! laminate laid so far.
 
 use std::f64::consts::PI;
-use std::path::Path;
 
 use formcam_geom::Meridian;
-use formcam_program::{LayerBody, ProgramError, Stage, WindJob, WoundLayer, plan_each, plan_until};
-use formcam_progress::Silent;
 use nalgebra::{Isometry3, Point3};
 use parry3d_f64::shape::SharedShape;
-
-use crate::SimError;
 
 /// The sides of the polygon each ring of the solid is drawn with.
 pub const SIDES: usize = 64;
@@ -84,7 +79,9 @@ fn knots(m: &dyn Meridian) -> Option<Vec<f64>> {
 
 /// The winding job's mandrel, layer by layer: the solid while each layer
 /// is wound (the mandrel grown by the layers before and by the whole of
-/// that layer), and each layer's label as the program's comments carry it.
+/// that layer, [`revolution_solid`]), and each layer's label as the
+/// program's comments carry it. The planner makes it from the layers it
+/// planned (formcam-program's `laminate`).
 pub struct Laminate {
     /// The layers' labels (`layer 1`, `layer 2 (hoop)`).
     pub labels: Vec<String>,
@@ -104,87 +101,6 @@ impl std::fmt::Debug for Laminate {
 }
 
 impl Laminate {
-    /// The laminate of the winding job file `path` (TOML, or a `.wind`
-    /// document with formcam's eye clearance): the job read,
-    /// its layers' paths planned (for their thickness), one solid per layer.
-    pub fn from_job_file(path: &Path) -> Result<Self, SimError> {
-        let job = crate::read_job(path, None)?;
-        Self::of_job(&job).map_err(|e| e.at(path))
-    }
-
-    /// The laminate of `job`: a single-layer job's path planned (its
-    /// thickness), a multi-layer job's program planned whole (each layer's
-    /// thickness as the planner grows the mandrel for the next).
-    pub fn of_job(job: &WindJob) -> Result<Self, LaminateError> {
-        let mut labels = Vec::new();
-        let mut thickness = Vec::new();
-        let mut laid = 0.0;
-        let mut record = |_: usize, layer: &WoundLayer| -> Result<(), ProgramError> {
-            if let LayerBody::Wind(w) = &layer.body {
-                laid = w.grown + w.thickness;
-            }
-            labels.push(layer.label.clone());
-            thickness.push(laid);
-            Ok(())
-        };
-        if job.is_layered() {
-            plan_each(job, Stage::Program, &Silent, &mut record).map_err(LaminateError::Program)?;
-        } else {
-            let planned = plan_until(job, Stage::Path).map_err(LaminateError::Program)?;
-            for (k, layer) in planned.layers.iter().enumerate() {
-                record(k, layer).map_err(LaminateError::Program)?;
-            }
-        }
-        Self::of_layers(job, labels, thickness)
-    }
-
-    /// The laminate of `job` planned already (its `layers`, whole).
-    pub fn of_planned(job: &WindJob, layers: &[WoundLayer]) -> Result<Self, LaminateError> {
-        let mut labels = Vec::new();
-        let mut thickness = Vec::new();
-        let mut laid = 0.0;
-        for layer in layers {
-            if let LayerBody::Wind(w) = &layer.body {
-                laid = w.grown + w.thickness;
-            }
-            labels.push(layer.label.clone());
-            thickness.push(laid);
-        }
-        Self::of_layers(job, labels, thickness)
-    }
-
-    /// One solid per layer: the job's mandrel grown by `thickness`.
-    fn of_layers(
-        job: &WindJob,
-        labels: Vec<String>,
-        thickness: Vec<f64>,
-    ) -> Result<Self, LaminateError> {
-        let read = |name: &str| {
-            let p = job.base_dir.join(name);
-            formcam_files::read_text(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))
-        };
-        let mut solids: Vec<SharedShape> = Vec::with_capacity(thickness.len());
-        for (k, t) in thickness.iter().enumerate() {
-            // Layers of one thickness share their solid.
-            if k > 0 && thickness[k - 1] == *t {
-                let same = solids[k - 1].clone();
-                solids.push(same);
-                continue;
-            }
-            let mandrel = job
-                .mandrel
-                .grown(*t)
-                .and_then(|g| g.build(read))
-                .map_err(|e| LaminateError::Program(e.into()))?;
-            solids.push(revolution_solid(&mandrel).ok_or(LaminateError::Solid(k + 1))?);
-        }
-        Ok(Self {
-            labels,
-            solids,
-            thickness,
-        })
-    }
-
     /// The layer each block of a program is wound in, from the layers'
     /// labels in the blocks' comments (the block a label stands on starts
     /// its layer); when no block carries a label, every block counts in the
@@ -212,31 +128,6 @@ impl Laminate {
             out.fill(self.solids.len().saturating_sub(1));
         }
         out
-    }
-}
-
-/// Why a job's laminate could not be made.
-#[derive(Debug)]
-pub enum LaminateError {
-    /// The job could not be planned.
-    Program(formcam_program::ProgramError),
-    /// The solid of a layer (1-based) could not be built.
-    Solid(usize),
-}
-
-impl LaminateError {
-    /// The error of the job file `path`.
-    pub fn at(self, path: &Path) -> SimError {
-        match self {
-            Self::Program(p) => SimError::Job {
-                path: path.to_path_buf(),
-                source: Box::new(p),
-            },
-            Self::Solid(layer) => SimError::MandrelSolid {
-                path: path.to_path_buf(),
-                layer,
-            },
-        }
     }
 }
 

@@ -28,6 +28,6 @@ mod solids;
 mod sweep;
 
 pub use check::Collisions;
-pub use mandrel::{CHORD_TOLERANCE_MM, Laminate, LaminateError, SIDES, revolution_solid};
+pub use mandrel::{CHORD_TOLERANCE_MM, Laminate, SIDES, revolution_solid};
 pub use pairs::{Pair, exempt};
 pub use solids::{Body, Mount, machine_bodies, visual_shape};

@@ -10,9 +10,7 @@ use std::path::{Path, PathBuf};
 use formcam_machine::{Shape, Visual};
 use formcam_nc::Dialect;
 use formcam_program::{Stage, WindJob, WoundProgram, plan_until, write_program};
-use formcam_sim::{
-    FeedRule, FreeFibre, SnagOptions, Timeline, ViolationKind, check_snag, read_program,
-};
+use formcam_sim::{FeedRule, SnagOptions, Timeline, ViolationKind, check_snag, read_program};
 use nalgebra::{Isometry3, Point3};
 
 fn examples() -> PathBuf {
@@ -45,7 +43,7 @@ fn timeline(wound: &WoundProgram) -> (Timeline, Dialect) {
 /// how far the payout point is from the planned eye; the largest of each.
 fn direction_errors(wound: &WoundProgram) -> (f64, f64, usize) {
     let (tl, _) = timeline(wound);
-    let fibre = FreeFibre::from_wound(wound).unwrap();
+    let fibre = formcam_program::free_fibre(wound).unwrap();
     let track = fibre.follow(&tl).unwrap();
     let mut s = fibre.sampler(&tl, &track);
     let (mut angle, mut eye, mut n) = (0.0f64, 0.0f64, 0);
@@ -89,7 +87,7 @@ fn the_recovered_fibre_is_the_planners_free_band_at_every_block_end() {
 fn a_solid_in_the_fibres_way_is_found_where_the_fibre_meets_it() {
     let wound = planned("vessel-axes-4axis.toml");
     let (tl, _) = timeline(&wound);
-    let fibre = FreeFibre::from_wound(&wound).unwrap();
+    let fibre = formcam_program::free_fibre(&wound).unwrap();
     let opts = SnagOptions::default();
     assert_eq!(check_snag(&tl, &fibre, &opts).unwrap(), []);
     // The fibre's middle at the end of a block a third into the first
@@ -178,7 +176,7 @@ fn every_demo_winding_program_is_clean_of_snags() {
     ));
     for (name, wound) in &jobs {
         let (tl, _) = timeline(wound);
-        let fibre = FreeFibre::from_wound(wound).unwrap();
+        let fibre = formcam_program::free_fibre(wound).unwrap();
         let track = fibre.follow(&tl).unwrap();
         // Every wound layer is found in the program.
         let found: std::collections::BTreeSet<usize> =
@@ -208,7 +206,7 @@ fn a_laminate_thicker_than_the_eyes_clearance_snags_where_the_eye_dips_into_it()
     if let formcam_program::LayerBody::Wind(w) = &mut wound.layers[0].body {
         w.mandrel = grown;
     }
-    let fibre = FreeFibre::from_wound(&wound).unwrap();
+    let fibre = formcam_program::free_fibre(&wound).unwrap();
     let track = fibre.follow(&tl).unwrap();
     // The first block at whose end the program's payout point is inside
     // the grown surface, by the surface's own clearance of that point.

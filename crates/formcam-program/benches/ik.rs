@@ -10,7 +10,8 @@ use std::path::PathBuf;
 use criterion::{Criterion, criterion_group, criterion_main};
 use formcam_geom::{DomeShape, Vessel};
 use formcam_machine::{IkMethod, solve};
-use formcam_machine::{Machine, band_passed, winder_targets};
+use formcam_machine::{Machine, band_passed};
+use formcam_program::winder_targets;
 use formcam_winding::eye::{EyeMode, EyeSpec, eye_trajectory};
 use formcam_winding::{Ends, LayerSpec, Slippage, plan_layer};
 

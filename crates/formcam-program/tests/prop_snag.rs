@@ -40,7 +40,7 @@ fn wound() -> &'static (Timeline, FreeFibre) {
         let m = wound.machine.clone().unwrap();
         let (p, lines, d) = read_program(Path::new("program.mpf"), &text, &m).unwrap();
         let tl = Timeline::new(&p, &lines, FeedRule::of(d), &m).unwrap();
-        (tl, FreeFibre::from_wound(&wound).unwrap())
+        (tl, formcam_program::free_fibre(&wound).unwrap())
     })
 }
 

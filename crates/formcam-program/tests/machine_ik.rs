@@ -5,9 +5,8 @@
 use std::path::PathBuf;
 
 use formcam_geom::{Cylinder, DomeShape, Meridian, Vessel};
-use formcam_machine::{
-    IkMethod, IssueKind, Machine, Target, placement_targets, solve, winder_targets,
-};
+use formcam_machine::{IkMethod, IssueKind, Machine, Target, solve};
+use formcam_program::{placement_targets, winder_targets};
 use formcam_winding::eye::{EyeMode, EyeSpec, eye_trajectory};
 use formcam_winding::{Circuit, Ends, LayerSpec, Slippage, plan_layer};
 

@@ -224,7 +224,7 @@ fn wound(job_text: &str, base: &Path) -> (String, Laminate, WindJob) {
     let planned = plan_until(&job, Stage::Program).unwrap();
     let mut out = Vec::new();
     write_program(&planned, &mut out).unwrap();
-    let laminate = Laminate::of_planned(&job, &planned.layers).unwrap();
+    let laminate = formcam_program::laminate(&job, &planned.layers).unwrap();
     (String::from_utf8(out).unwrap(), laminate, job)
 }
 

@@ -7,9 +7,7 @@ use std::path::Path;
 use formcam_machine::Machine;
 use formcam_nc::Program;
 use formcam_program::{Stage, WindJob, plan_until, write_program};
-use formcam_sim::{
-    Collisions, FeedRule, FreeFibre, Laminate, Timeline, program_axes, read_program,
-};
+use formcam_sim::{Collisions, FeedRule, FreeFibre, Timeline, program_axes, read_program};
 
 /// The collision case: the machine, the repeated program, its timeline and
 /// the collision check with the job's mandrel.
@@ -52,7 +50,7 @@ pub fn vessel(n: usize) -> VesselCase {
         copy += 1.0;
     }
     let lines: Vec<usize> = (1..=n).collect();
-    let laminate = Laminate::of_job(&job).unwrap();
+    let laminate = formcam_program::laminate_of_job(&job).unwrap();
     let stages = laminate.stage_of_blocks(p.blocks.iter().map(|b| b.comment.as_deref()));
     let collisions = Collisions::with_mandrel(&m, None, &laminate, stages).unwrap();
     let timeline = Timeline::new(&p, &lines, FeedRule::Sinumerik840d, &m).unwrap();
@@ -98,6 +96,6 @@ pub fn helical(n: usize) -> (Timeline, FreeFibre, usize) {
     let m = wound.machine.clone().unwrap();
     let (p, lines, d) = read_program(Path::new("program.mpf"), &text, &m).unwrap();
     let tl = Timeline::new(&p, &lines, FeedRule::of(d), &m).unwrap();
-    let fibre = FreeFibre::from_wound(&wound).unwrap();
+    let fibre = formcam_program::free_fibre(&wound).unwrap();
     (tl, fibre, layers)
 }

@@ -4,7 +4,7 @@
 //! time of each run (every thread's, from `/proc/self/stat`, so that a
 //! loaded machine's waits do not count) and the wall time.
 //!
-//! `cargo run --release -p formcam-sim --example check_1e5 -- [collisions|snag|both] [runs]`
+//! `cargo run --release -p formcam-program --example check_1e5 -- [collisions|snag|both] [runs]`
 //! (`exhaustive` instead: both, and each check without bounds once,
 //! compared).
 

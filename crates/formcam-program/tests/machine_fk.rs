@@ -7,9 +7,9 @@
 use formcam_geom::{Cylinder, DomeShape, Vessel};
 use formcam_machine::shipped::{names, shipped};
 use formcam_machine::{
-    AxisTrack, Fk, IkMethod, Machine, MachineKind, ORIENTATION_SCALE, Target, band_passed,
-    placement_targets, solve, winder_targets,
+    AxisTrack, Fk, IkMethod, Machine, MachineKind, ORIENTATION_SCALE, Target, band_passed, solve,
 };
+use formcam_program::{placement_targets, winder_targets};
 use formcam_winding::eye::{EyeMode, EyeSpec, eye_trajectory};
 use formcam_winding::{Circuit, Ends, LayerSpec, Slippage, plan_layer};
 use nalgebra::Isometry3;

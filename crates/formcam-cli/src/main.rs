@@ -267,7 +267,10 @@ fn main() -> ExitCode {
                     .exit(),
             };
             let wound = match picked {
-                (job, output, Stage::Program) if job.extension().is_some_and(|e| e == "wind") => {
+                (job, output, Stage::Program)
+                    if formcam_run::JobKind::of_extension(&job)
+                        == Some(formcam_run::JobKind::WindFile) =>
+                {
                     wind::run_wind_file(
                         &job,
                         &output,

@@ -28,7 +28,7 @@ pub use job::{
     Ik, JobMachine, Layers, MachineSource, MotionJob, Post, Times, WINDING_JOB, WindImport, WindJob,
 };
 pub use mandrel_check::{
-    MandrelCheckBuilder, free_fibre, laminate, laminate_of_job, mandrel_check,
+    MandrelCheckBuilder, free_fibre, is_wind_file, laminate, laminate_of_job, mandrel_check,
     mandrel_check_of_file, read_job, wound_circuit,
 };
 pub use plan::{

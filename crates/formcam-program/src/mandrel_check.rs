@@ -23,15 +23,19 @@ use crate::{
 pub fn read_job(path: &Path, eye_clearance: Option<f64>) -> Result<WindJob, JobFileError> {
     let text = formcam_files::read_text(path)?;
     let base = path.parent().unwrap_or(Path::new(""));
-    let wind = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("wind"));
-    if wind {
+    if is_wind_file(path) {
         WindJob::from_wind(&text, eye_clearance.unwrap_or(EYE_CLEARANCE_MM), &[])
     } else {
         WindJob::from_toml(&text, base)
     }
     .map_err(|e| JobFileError::job(path, e))
+}
+
+/// Whether the job file `path` is a Cyclone/FiberPath `.wind` document, by
+/// its extension (in any case); every other job file is TOML.
+pub fn is_wind_file(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("wind"))
 }
 
 /// The job file `path` (TOML, or a `.wind` document with formcam's eye

@@ -6,16 +6,38 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use formcam_correct::{CorrectionJob, ScenarioJob};
-
+use formcam_correct::{CORRECT_JOB, CorrectionJob, SCENARIO_JOB, ScenarioJob};
+use formcam_dress::DRESS_JOB;
+use formcam_program::WINDING_JOB;
 use formcam_progress::{Progress, Silent};
+use formcam_schema::JobSchema;
+use serde::{Deserialize, Serialize};
 
 use crate::{
     RunError, RunOutput, correct_job_with, correct_simulate_with, dress_text_with, is_dress_job,
 };
 
-/// What a job file holds, and so which run it takes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// What a job file holds, and so its description and the run it takes:
+/// the one registry of job kinds (the command line, the demo and the
+/// studio all tell a job's kind here). Its name is the word JSON and the
+/// studio's page write (`winding`, `windfile`, `correction`, ...).
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Hash,
+    PartialOrd,
+    Ord,
+    Serialize,
+    Deserialize,
+    strum::IntoStaticStr,
+    strum::EnumString,
+    strum::EnumIter,
+)]
+#[serde(rename_all = "lowercase")]
+#[strum(serialize_all = "lowercase")]
 pub enum JobKind {
     /// A winding job (TOML): run to its furthest stage.
     Winding,
@@ -30,20 +52,91 @@ pub enum JobKind {
 }
 
 impl JobKind {
+    /// The kinds written as TOML against a description, in the order the
+    /// studio lists them.
+    pub const EDITABLE: [JobKind; 4] = [
+        JobKind::Winding,
+        JobKind::Dressing,
+        JobKind::Correction,
+        JobKind::Scenario,
+    ];
+
+    /// The kind's name (`winding`, `windfile`, ...), as JSON writes it.
+    pub fn name(self) -> &'static str {
+        self.into()
+    }
+
+    /// The kind named `name` (as [`JobKind::name`] writes it).
+    pub fn from_name(name: &str) -> Option<Self> {
+        name.parse().ok()
+    }
+
+    /// The description of this kind's job file, the one its reader
+    /// validates against and the studio's form is drawn from (`None` for a
+    /// `.wind` document, which is JSON read by its own rules).
+    pub fn schema(self) -> Option<&'static JobSchema> {
+        match self {
+            JobKind::Winding => Some(&WINDING_JOB),
+            JobKind::WindFile => None,
+            JobKind::Correction => Some(&CORRECT_JOB),
+            JobKind::Scenario => Some(&SCENARIO_JOB),
+            JobKind::Dressing => Some(&DRESS_JOB),
+        }
+    }
+
     /// The kind of the job at `path` whose text is `text`: `.wind` by its
-    /// extension, the others by their tables (a winding job when no other
-    /// kind's table is there, or when the text is no TOML: its run names
-    /// the syntax error).
+    /// extension, the others by their tables ([`JobKind::of_tables`]); a
+    /// winding job when no kind's tables are there, or when the text is no
+    /// TOML: its run names the syntax error.
     pub fn of(path: &Path, text: &str) -> Self {
-        if path.extension().is_some_and(|x| x == "wind") {
-            return Self::WindFile;
+        if let Some(kind) = Self::of_extension(path) {
+            return kind;
         }
         match text.parse::<toml::Table>() {
-            Ok(t) if ScenarioJob::is_scenario(&t) => Self::Scenario,
-            Ok(t) if CorrectionJob::is_job(&t) => Self::Correction,
-            Ok(t) if is_dress_job(&t) => Self::Dressing,
-            _ => Self::Winding,
+            Ok(t) => Self::of_tables(&t).unwrap_or(Self::Winding),
+            Err(_) => Self::Winding,
         }
+    }
+
+    /// The kind a job file's extension alone tells: a `.wind` document.
+    pub fn of_extension(path: &Path) -> Option<Self> {
+        formcam_program::is_wind_file(path).then_some(Self::WindFile)
+    }
+
+    /// The kind of the TOML job `text` by its top-level tables
+    /// ([`JobKind::of_tables`]); `None` for a text that is no TOML.
+    pub fn of_text(text: &str) -> Option<Self> {
+        Self::of_tables(&text.parse::<toml::Table>().ok()?)
+    }
+
+    /// The kind of a TOML job by its top-level tables: `[surface]` and
+    /// `[warp]` a scenario, `[correct]`, `[wheel]`, else a winding job when
+    /// it has a winding table; `None` when it has none of these, or is a
+    /// machine file (its `[machine]` table is also a winding job's, its
+    /// `[[link]]`s are no job's).
+    pub fn of_tables(table: &toml::Table) -> Option<Self> {
+        if ScenarioJob::is_scenario(table) {
+            Some(Self::Scenario)
+        } else if CorrectionJob::is_job(table) {
+            Some(Self::Correction)
+        } else if is_dress_job(table) {
+            Some(Self::Dressing)
+        } else if !table.contains_key("link")
+            && WINDING_JOB
+                .tables
+                .iter()
+                .any(|t| table.contains_key(t.name))
+        {
+            Some(Self::Winding)
+        } else {
+            None
+        }
+    }
+}
+
+impl std::fmt::Display for JobKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
     }
 }
 
@@ -130,7 +223,9 @@ pub fn demo(examples: &Path) -> Result<Vec<PathBuf>, RunError> {
             source,
         })?
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "toml" || x == "wind"))
+        .filter(|p| {
+            p.extension().is_some_and(|x| x == "toml") || JobKind::of_extension(p).is_some()
+        })
         .collect();
     jobs.sort();
     if jobs.is_empty() {
@@ -199,5 +294,47 @@ mod tests {
         let listed = demo(&dir);
         assert!(matches!(listed, Err(RunError::NoExamples { .. })));
         let _ = fs::remove_dir(&dir);
+    }
+
+    #[test]
+    fn kinds_by_their_extension_and_tables() {
+        let cases = [
+            (
+                "[surface]\nkind = \"panel\"\n[warp]\n",
+                Some(JobKind::Scenario),
+            ),
+            ("[correct]\ngain = 1.0\n", Some(JobKind::Correction)),
+            ("[wheel]\nr1 = 1.0\n", Some(JobKind::Dressing)),
+            ("[mandrel]\nkind = \"vessel\"\n", Some(JobKind::Winding)),
+            ("[[layer]]\nkind = \"hoop\"\n", Some(JobKind::Winding)),
+            ("[machine]\nname = \"m\"\n[[link]]\nname = \"a\"\n", None),
+            ("[other]\nx = 1\n", None),
+            ("not = [toml", None),
+        ];
+        let toml = Path::new("job.toml");
+        for (text, kind) in cases {
+            assert_eq!(JobKind::of_text(text), kind, "{text}");
+            // A run takes what is no other kind's as a winding job, whose
+            // reader then names what is wrong.
+            assert_eq!(JobKind::of(toml, text), kind.unwrap_or(JobKind::Winding));
+            assert_eq!(JobKind::of(Path::new("job.wind"), text), JobKind::WindFile);
+        }
+    }
+
+    #[test]
+    fn names_are_the_json_words_and_editable_kinds_have_descriptions() {
+        use strum::IntoEnumIterator;
+        for k in JobKind::iter() {
+            let json = serde_json::to_string(&k).unwrap_or_default();
+            assert_eq!(json, format!("\"{}\"", k.name()));
+            assert_eq!(JobKind::from_name(k.name()), Some(k));
+            assert_eq!(k.schema().is_some(), JobKind::EDITABLE.contains(&k), "{k}");
+        }
+        assert_eq!(
+            JobKind::Dressing.schema().map(|s| s.name),
+            Some(DRESS_JOB.name)
+        );
+        assert_eq!(JobKind::WindFile.name(), "windfile");
+        assert_eq!(JobKind::from_name("Winding"), None);
     }
 }

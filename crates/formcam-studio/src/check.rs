@@ -20,7 +20,7 @@ use serde::{Deserialize, Serialize};
 use toml_edit::{ImDocument, Item};
 
 use crate::values::line_col;
-use crate::{StudioError, StudioKind, apply_values_as};
+use crate::{JobKind, StudioError, apply_values_as};
 
 /// A problem of a job, placed at its field for the form.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
@@ -41,14 +41,19 @@ pub struct FieldError {
 /// `text`, as a job of `kind`: empty when `formcam` would read it and the
 /// files it names and start the run; else the first problem, as `formcam`
 /// stops at it.
-pub fn check_job(kind: StudioKind, dir: &Path, file_name: &str, text: &str) -> Vec<FieldError> {
+pub fn check_job(kind: JobKind, dir: &Path, file_name: &str, text: &str) -> Vec<FieldError> {
     let path = dir.join(file_name);
-    let described = validate(kind.schema(), text).err();
+    let described = kind.schema().and_then(|s| validate(s, text).err());
     let read = match kind {
-        StudioKind::Winding => winding(&path, text),
-        StudioKind::Dressing => dressing(&path, text),
-        StudioKind::Correction => correction(&path, text),
-        StudioKind::Scenario => scenario(&path, text),
+        JobKind::WindFile => Err(Refusal {
+            message: format!("{}: a .wind document is not edited here", path.display()),
+            field: None,
+            line: None,
+        }),
+        JobKind::Winding => winding(&path, text),
+        JobKind::Dressing => dressing(&path, text),
+        JobKind::Correction => correction(&path, text),
+        JobKind::Scenario => scenario(&path, text),
     };
     let refusal = match (read, &described) {
         (Err(r), _) => r,
@@ -92,7 +97,7 @@ pub struct Applied {
 /// checked ([`check_job`]). Values that cannot be written are a problem at
 /// their field, the text left as it was.
 pub fn apply_job(
-    kind: StudioKind,
+    kind: JobKind,
     dir: &Path,
     file_name: &str,
     base: &str,
@@ -496,18 +501,18 @@ mod tests {
         let base = "[mandrel]\nkind = \"cylinder\"\nradius = 50.0\nlength = 300.0\n\n[winding]\nwinding_angle_deg = 45.0 # deg\nband_width = 10.0\nband_thickness = 0.5\n";
         let mut values = crate::values_of(base).expect("toml");
         values["winding"]["winding_angle_deg"] = serde_json::json!(30);
-        let applied = apply_job(StudioKind::Winding, &dir, "a.toml", base, &values);
+        let applied = apply_job(JobKind::Winding, &dir, "a.toml", base, &values);
         assert!(applied.ok, "{applied:?}");
         assert!(applied.text.contains("winding_angle_deg = 30.0 # deg\n"));
         values["winding"]["band_width"] = serde_json::json!(0);
-        let applied = apply_job(StudioKind::Winding, &dir, "a.toml", base, &values);
+        let applied = apply_job(JobKind::Winding, &dir, "a.toml", base, &values);
         assert!(!applied.ok);
         assert_eq!(
             applied.errors[0].field.as_deref(),
             Some("winding.band_width")
         );
         let refused = apply_job(
-            StudioKind::Winding,
+            JobKind::Winding,
             &dir,
             "a.toml",
             base,
@@ -550,11 +555,11 @@ mod tests {
         let dir = std::env::temp_dir();
         let good = "[mandrel]\nkind = \"cylinder\"\nradius = 50.0\nlength = 300.0\n\n[winding]\nwinding_angle_deg = 45.0\nband_width = 10.0\nband_thickness = 0.5\n";
         assert_eq!(
-            check_job(StudioKind::Winding, &dir, "a.toml", good),
+            check_job(JobKind::Winding, &dir, "a.toml", good),
             Vec::new()
         );
         let bad = good.replace("45.0", "95.0");
-        let found = check_job(StudioKind::Winding, &dir, "a.toml", &bad);
+        let found = check_job(JobKind::Winding, &dir, "a.toml", &bad);
         assert_eq!(found.len(), 1);
         assert_eq!(found[0].field.as_deref(), Some("winding.winding_angle_deg"));
         assert_eq!(found[0].line, Some(7));

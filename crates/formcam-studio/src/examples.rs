@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 use toml_edit::{DocumentMut, Item, value};
 
-use crate::{StudioError, StudioKind};
+use crate::{JobKind, StudioError};
 
 /// A bundled example job and the files it names.
 #[derive(Debug, Clone, Copy)]
@@ -21,7 +21,7 @@ pub struct Example {
     /// Its name, the job file's stem (`vessel-program-840d`).
     pub name: &'static str,
     /// Its kind.
-    pub kind: StudioKind,
+    pub kind: JobKind,
     /// The job's text as bundled.
     pub text: &'static str,
     /// The files it names, by their paths relative to the job
@@ -81,7 +81,7 @@ macro_rules! example {
     ($name:literal, $kind:ident, [$($input:literal),*]) => {
         Example {
             name: $name,
-            kind: StudioKind::$kind,
+            kind: JobKind::$kind,
             text: include_str!(concat!("../../../examples/", $name, ".toml")),
             inputs: &[$(($input, include_str!(concat!("../../../examples/", $input)))),*],
         }
@@ -186,7 +186,7 @@ mod tests {
         sorted.sort_unstable();
         assert_eq!(names, sorted);
         for e in examples() {
-            assert_eq!(StudioKind::of(e.text), Some(e.kind), "{}", e.name);
+            assert_eq!(JobKind::of_text(e.text), Some(e.kind), "{}", e.name);
         }
         assert!(matches!(
             start_example(Path::new("."), "no-such"),

@@ -9,7 +9,6 @@
 mod check;
 mod error;
 mod examples;
-mod kind;
 mod runs;
 mod save;
 mod server;
@@ -19,7 +18,7 @@ mod values;
 pub use check::{Applied, FieldError, apply_job, check_job};
 pub use error::{NameProblem, StudioError, ValuesProblem};
 pub use examples::{Example, example, examples, start_example};
-pub use kind::StudioKind;
+pub use formcam_run::JobKind;
 pub use runs::{
     RUN_FILE, RUN_JOB_FILE, RUNS_FOLDER, RunEntry, RunOrder, RunState, RunStatus, Runs,
 };

@@ -18,7 +18,7 @@ use formcam_progress::{Hook, Step};
 use formcam_run::{RunError, RunOutput, run_job_text_with};
 use serde::Serialize;
 
-use crate::{StudioError, StudioKind};
+use crate::{JobKind, StudioError};
 
 /// The folder of `DIR` the runs are written into.
 pub const RUNS_FOLDER: &str = "runs";
@@ -92,7 +92,7 @@ pub struct RunEntry {
     /// The job file it ran (`None`: not saved, or not said).
     pub job: Option<String>,
     /// The job's kind, where known.
-    pub kind: Option<StudioKind>,
+    pub kind: Option<JobKind>,
     /// Where it is.
     pub state: RunState,
     /// The run's line, once done.
@@ -103,7 +103,7 @@ pub struct RunEntry {
 #[derive(Debug, Serialize, serde::Deserialize)]
 struct RunRecord {
     job: Option<String>,
-    kind: StudioKind,
+    kind: JobKind,
     line: String,
 }
 
@@ -113,7 +113,7 @@ pub struct RunOrder {
     /// The job file in `DIR` (`None`: not saved).
     pub file: Option<String>,
     /// Its kind.
-    pub kind: StudioKind,
+    pub kind: JobKind,
     /// Its text.
     pub text: String,
 }
@@ -377,8 +377,8 @@ fn run_one(shared: &Shared, q: &Queued) -> Result<String, Ended> {
             l.status.total = step.total;
         });
     });
-    let output = run_job_text_with(&job, &q.order.text, q.order.kind.job_kind(), &out, &hook)
-        .map_err(|e| match e {
+    let output =
+        run_job_text_with(&job, &q.order.text, q.order.kind, &out, &hook).map_err(|e| match e {
             e if e.is_cancelled() => Ended::Cancelled,
             e => Ended::Failed(e.to_string()),
         })?;

@@ -15,7 +15,7 @@ use serde_json::{Value, json};
 
 use crate::runs::{RUNS_FOLDER, RunOrder, Runs};
 use crate::{
-    Applied, StudioError, StudioKind, apply_job, examples, job_path, save_job, start_example,
+    Applied, JobKind, StudioError, apply_job, examples, job_path, save_job, start_example,
     values_of,
 };
 
@@ -78,7 +78,7 @@ const TEXT: &str = "text/plain; charset=utf-8";
 #[derive(Debug, Deserialize)]
 struct Edit {
     file: Option<String>,
-    kind: StudioKind,
+    kind: JobKind,
     text: String,
     values: Value,
 }
@@ -218,7 +218,7 @@ impl Studio {
     /// `/api/studio`: the folder, the job given, each kind's description,
     /// the job files and the examples.
     fn listing(&self) -> Value {
-        let kinds: Vec<Value> = StudioKind::ALL
+        let kinds: Vec<Value> = JobKind::EDITABLE
             .iter()
             .map(|k| json!({"kind": k, "schema": k.schema()}))
             .collect();
@@ -240,14 +240,14 @@ impl Studio {
         let Ok(read) = std::fs::read_dir(&self.dir) else {
             return Vec::new();
         };
-        let mut jobs: Vec<(String, StudioKind)> = read
+        let mut jobs: Vec<(String, JobKind)> = read
             .filter_map(Result::ok)
             .filter(|e| e.path().is_file())
             .filter_map(|e| {
                 let name = e.file_name().to_str()?.to_string();
                 job_path(Path::new(""), &name).ok()?;
                 let text = formcam_files::read_text(&e.path()).ok()?;
-                Some((name, StudioKind::of(&text)?))
+                Some((name, JobKind::of_text(&text)?))
             })
             .collect();
         jobs.sort();
@@ -260,7 +260,7 @@ impl Studio {
     fn job(&self, file: &str) -> Result<Answer, Answer> {
         let path = self.job_path(file)?;
         let text = formcam_files::read_text(&path).map_err(|e| Answer::error(404, e))?;
-        let kind = StudioKind::of(&text).ok_or_else(|| {
+        let kind = JobKind::of_text(&text).ok_or_else(|| {
             Answer::error(
                 422,
                 StudioError::NotAJob {
@@ -423,7 +423,7 @@ fn job_file_name(path: &Path) -> Result<String, StudioError> {
         .filter(|n| job_path(Path::new(""), n).is_ok())
         .ok_or_else(not)?;
     let text = formcam_files::read_text(path).map_err(|_| not())?;
-    StudioKind::of(&text).ok_or_else(not)?;
+    JobKind::of_text(&text).ok_or_else(not)?;
     Ok(name.to_string())
 }
 

@@ -18,7 +18,7 @@ use toml_edit::{
 };
 
 use crate::error::ValuesProblem;
-use crate::{StudioError, StudioKind};
+use crate::{JobKind, StudioError};
 
 /// The values of the job whose text is `text`, as its form shows them:
 /// tables as JSON objects, repeated tables as arrays of objects, integers
@@ -42,9 +42,9 @@ pub fn apply_values(base: &str, values: &Json) -> Result<String, StudioError> {
                 .keys()
                 .map(|k| (k.clone(), toml::Value::Table(toml::Table::new())))
                 .collect();
-            StudioKind::of_tables(&tables)
+            JobKind::of_tables(&tables)
         })
-        .or_else(|| StudioKind::of(base));
+        .or_else(|| JobKind::of_text(base));
     apply_values_as(kind, base, values)
 }
 
@@ -52,7 +52,7 @@ pub fn apply_values(base: &str, values: &Json) -> Result<String, StudioError> {
 /// new keys in the values' order, numbers as the JSON gives them). A JSON
 /// `null` is a value left out.
 pub fn apply_values_as(
-    kind: Option<StudioKind>,
+    kind: Option<JobKind>,
     base: &str,
     values: &Json,
 ) -> Result<String, StudioError> {
@@ -60,7 +60,7 @@ pub fn apply_values_as(
     let Json::Object(map) = values else {
         return Err(values_error("", ValuesProblem::NotAnObject));
     };
-    apply_root(doc.as_table_mut(), map, kind.map(StudioKind::schema))?;
+    apply_root(doc.as_table_mut(), map, kind.and_then(JobKind::schema))?;
     Ok(doc.to_string())
 }
 
@@ -512,7 +512,7 @@ mod tests {
             .expect("object")
             .remove("length");
         v["eye"] = json!({"mode": "axis-parallel", "radius": 160});
-        let out = apply_values_as(Some(StudioKind::Winding), JOB, &v).expect("applies");
+        let out = apply_values_as(Some(JobKind::Winding), JOB, &v).expect("applies");
         assert!(!out.contains("length"), "{out}");
         // mu before samples: the description's order.
         let (mu, samples) = (out.find("mu = 0.1"), out.find("samples = 2001"));
@@ -565,7 +565,7 @@ mod tests {
             "[wheel]\nball_radius = 1.85\nwidth = 6.0\n\n[dresser]\nwidth = 2.9\n\n\
              [process]\ndepth = 0.05\nstep = 0.01\n"
         );
-        assert_eq!(StudioKind::of(&out), Some(StudioKind::Dressing));
+        assert_eq!(JobKind::of_text(&out), Some(JobKind::Dressing));
     }
 
     #[test]
@@ -575,7 +575,7 @@ mod tests {
             e.to_string(),
             "mandrel: a table must be an object of fields"
         );
-        let e = apply_values_as(Some(StudioKind::Winding), JOB, &json!({"layer": [{}, 2]}))
+        let e = apply_values_as(Some(JobKind::Winding), JOB, &json!({"layer": [{}, 2]}))
             .expect_err("refused");
         assert_eq!(
             e.to_string(),

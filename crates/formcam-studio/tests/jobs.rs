@@ -9,8 +9,8 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 use formcam_studio::{
-    FieldError, NameProblem, StudioError, StudioKind, apply_values, backup_path, check_job,
-    examples, save_job, save_job_with, start_example, values_of,
+    FieldError, JobKind, NameProblem, StudioError, apply_values, backup_path, check_job, examples,
+    save_job, save_job_with, start_example, values_of,
 };
 use serde_json::{Value, json};
 
@@ -33,7 +33,7 @@ fn every_example_started_into_a_folder_checks_clean() {
         let file = start_example(&dir, ex.name).expect("started");
         assert_eq!(file, format!("{}.toml", ex.name));
         let text = read(&dir.join(&file));
-        assert_eq!(StudioKind::of(&text), Some(ex.kind), "{}", ex.name);
+        assert_eq!(JobKind::of_text(&text), Some(ex.kind), "{}", ex.name);
         assert_eq!(
             check_job(ex.kind, &dir, &file, &text),
             Vec::<FieldError>::new(),
@@ -240,7 +240,7 @@ fn scenario_a_value_out_of_range_at_its_field() {
 fn a_text_that_is_no_toml_is_placed_at_its_line() {
     let dir = fresh("syntax");
     let text = "[mandrel]\nkind = \"vessel\"\nradius = \n";
-    let found = check_job(StudioKind::Winding, &dir, "a.toml", text);
+    let found = check_job(JobKind::Winding, &dir, "a.toml", text);
     assert_eq!(found.len(), 1);
     assert_eq!(found[0].field, None);
     assert_eq!(found[0].line, Some(3));

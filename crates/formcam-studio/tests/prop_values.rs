@@ -4,7 +4,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use formcam_schema::{Field, Kind, Repeat};
-use formcam_studio::{StudioKind, apply_values_as, examples, values_of};
+use formcam_studio::{JobKind, apply_values_as, examples, values_of};
 use proptest::prelude::*;
 use serde_json::{Map, Value, json};
 
@@ -109,8 +109,8 @@ fn entry<'v>(
     }
 }
 
-fn apply(kind: StudioKind, values: &mut Value, e: &Edit) {
-    let schema = kind.schema();
+fn apply(kind: JobKind, values: &mut Value, e: &Edit) {
+    let schema = kind.schema().expect("an editable kind has a description");
     let Some(map) = values.as_object_mut() else {
         return;
     };

@@ -125,61 +125,70 @@ impl MandrelSpec {
                 )
                 .map_err(|e| geom(p, e))?,
             )),
-            MandrelKind::Vessel => {
-                let radius = need("mandrel.radius", self.radius, "cylinder radius in mm, > 0")?;
-                let length = need("mandrel.cylinder_length", self.cylinder_length, "mm, >= 0")?;
-                let dome = self.dome.unwrap_or(DomeKind::Hemisphere);
-                let start = dome_shape(
-                    dome,
-                    (self.axis_ratio, "mandrel.axis_ratio"),
-                    (self.crown_radius, "mandrel.crown_radius"),
-                    (self.knuckle_radius, "mandrel.knuckle_radius"),
-                )?;
-                let end = dome_shape(
-                    self.dome_end.unwrap_or(dome),
-                    (
-                        self.axis_ratio_end.or(self.axis_ratio),
-                        "mandrel.axis_ratio_end",
-                    ),
-                    (
-                        self.crown_radius_end.or(self.crown_radius),
-                        "mandrel.crown_radius_end",
-                    ),
-                    (
-                        self.knuckle_radius_end.or(self.knuckle_radius),
-                        "mandrel.knuckle_radius_end",
-                    ),
-                )?;
-                let po = need(
-                    "mandrel.polar_opening",
-                    self.polar_opening,
-                    "radius in mm, 0 < it < radius",
-                )?;
-                let po_end = self.polar_opening_end.unwrap_or(po);
-                Ok(Mandrel::Vessel(
-                    Vessel::new(radius, length, (start, po), (end, po_end))
-                        .map_err(|e| geom(p, e))?,
-                ))
-            }
-            MandrelKind::Profile => {
-                let file = self.file.as_deref().ok_or_else(|| {
-                    WindingError::field("mandrel.file", "missing: a CSV file of z,r points (mm)")
-                })?;
-                let text = read(file).map_err(|e| WindingError::field("mandrel.file", e))?;
-                let offset = self.offset_mm.unwrap_or(0.0);
-                if !offset.is_finite() {
-                    return Err(WindingError::field("mandrel.offset_mm", "must be finite"));
-                }
-                let t = formcam_geom::read_pairs(&text, ("z", "r"))
-                    .and_then(|pts| {
-                        let pts: Vec<(f64, f64)> =
-                            pts.into_iter().map(|(z, r)| (z, r + offset)).collect();
-                        Tabulated::new(&pts, self.smoothing.unwrap_or(0.0))
-                    })
-                    .map_err(|e| WindingError::field("mandrel.file", format!("{file}: {e}")))?;
-                Ok(Mandrel::Profile(t))
-            }
+            MandrelKind::Vessel => self.vessel(),
+            MandrelKind::Profile => self.profile(read),
         }
+    }
+
+    /// A vessel: the cylinder and its domes (the end one as the start one unless
+    /// given) with their polar openings.
+    fn vessel(&self) -> Result<Mandrel, WindingError> {
+        let radius = need("mandrel.radius", self.radius, "cylinder radius in mm, > 0")?;
+        let length = need("mandrel.cylinder_length", self.cylinder_length, "mm, >= 0")?;
+        let dome = self.dome.unwrap_or(DomeKind::Hemisphere);
+        let start = dome_shape(
+            dome,
+            (self.axis_ratio, "mandrel.axis_ratio"),
+            (self.crown_radius, "mandrel.crown_radius"),
+            (self.knuckle_radius, "mandrel.knuckle_radius"),
+        )?;
+        let end = dome_shape(
+            self.dome_end.unwrap_or(dome),
+            (
+                self.axis_ratio_end.or(self.axis_ratio),
+                "mandrel.axis_ratio_end",
+            ),
+            (
+                self.crown_radius_end.or(self.crown_radius),
+                "mandrel.crown_radius_end",
+            ),
+            (
+                self.knuckle_radius_end.or(self.knuckle_radius),
+                "mandrel.knuckle_radius_end",
+            ),
+        )?;
+        let po = need(
+            "mandrel.polar_opening",
+            self.polar_opening,
+            "radius in mm, 0 < it < radius",
+        )?;
+        let po_end = self.polar_opening_end.unwrap_or(po);
+        Ok(Mandrel::Vessel(
+            Vessel::new(radius, length, (start, po), (end, po_end))
+                .map_err(|e| geom("mandrel", e))?,
+        ))
+    }
+
+    /// A profile: the `z,r` table `read` loads, offset by `offset_mm` and smoothed.
+    fn profile(
+        &self,
+        read: impl Fn(&str) -> Result<String, String>,
+    ) -> Result<Mandrel, WindingError> {
+        let file = self.file.as_deref().ok_or_else(|| {
+            WindingError::field("mandrel.file", "missing: a CSV file of z,r points (mm)")
+        })?;
+        let text = read(file).map_err(|e| WindingError::field("mandrel.file", e))?;
+        let offset = self.offset_mm.unwrap_or(0.0);
+        if !offset.is_finite() {
+            return Err(WindingError::field("mandrel.offset_mm", "must be finite"));
+        }
+        let t = formcam_geom::read_pairs(&text, ("z", "r"))
+            .and_then(|pts| {
+                let pts: Vec<(f64, f64)> = pts.into_iter().map(|(z, r)| (z, r + offset)).collect();
+                Tabulated::new(&pts, self.smoothing.unwrap_or(0.0))
+            })
+            .map_err(|e| WindingError::field("mandrel.file", format!("{file}: {e}")))?;
+        Ok(Mandrel::Profile(t))
     }
 }
 

@@ -11,7 +11,44 @@ use crate::{Ends, LayerSpec, MuSegment, Slippage, TubeTurn, WindingError};
 impl WindingSpec {
     /// The layer specification for `mandrel`.
     pub fn layer_spec(&self, mandrel: &Mandrel) -> Result<LayerSpec, WindingError> {
-        let slippage = match (&self.mu, &self.mu_segments) {
+        let slippage = self.slippage()?;
+        let hoop = self.hoop()?;
+        self.check_kind_fields(hoop)?;
+        let ends = self.ends(mandrel, hoop)?;
+        let turnaround = self.turnaround(mandrel, hoop)?;
+        let default_dwell = if mandrel.is_tube() && turnaround == TubeTurn::Extension {
+            180.0
+        } else {
+            0.0
+        };
+        let defaults = LayerSpec::default();
+        Ok(LayerSpec {
+            slippage,
+            ends,
+            band_width: need(
+                "winding.band_width",
+                self.band_width,
+                "band width in mm, > 0",
+            )?,
+            band_thickness: need(
+                "winding.band_thickness",
+                self.band_thickness,
+                "band thickness in mm, > 0",
+            )?,
+            overlap: self.overlap.unwrap_or(0.0),
+            pattern_number: self.pattern_number,
+            skip_index: self.skip_index,
+            dwell_min: self.dwell_min_deg.unwrap_or(default_dwell).to_radians(),
+            mu_limit: self.mu_limit.unwrap_or(defaults.mu_limit),
+            samples: self.samples.unwrap_or(defaults.samples),
+            minimax_nodes: defaults.minimax_nodes,
+            turnaround,
+        })
+    }
+
+    /// `mu` or `mu_segments`: how the slippage is chosen.
+    fn slippage(&self) -> Result<Slippage, WindingError> {
+        Ok(match (&self.mu, &self.mu_segments) {
             (Some(_), Some(_)) => {
                 return Err(WindingError::field(
                     "winding.mu",
@@ -43,8 +80,12 @@ impl WindingSpec {
                     ));
                 }
             },
-        };
-        let hoop = match self.kind {
+        })
+    }
+
+    /// Whether the layer is a hoop layer (`kind`: `helical` or `hoop` here).
+    fn hoop(&self) -> Result<bool, WindingError> {
+        Ok(match self.kind {
             None | Some(LayerKind::Helical) => false,
             Some(LayerKind::Hoop) => true,
             Some(other) => {
@@ -53,7 +94,11 @@ impl WindingSpec {
                     format!("\"{}\" is not a layer kind here (helical or hoop)", other),
                 ));
             }
-        };
+        })
+    }
+
+    /// Checks that the fields only one kind of layer takes are not given for another.
+    fn check_kind_fields(&self, hoop: bool) -> Result<(), WindingError> {
         if self.mandrel_rotation_deg.is_some() {
             return Err(WindingError::field(
                 "winding.mandrel_rotation_deg",
@@ -66,7 +111,13 @@ impl WindingSpec {
                 "only for kind = \"hoop\"",
             ));
         }
-        let ends = match mandrel {
+        Ok(())
+    }
+
+    /// Where the passes start and end: a tube's winding angle (from the band
+    /// width for a hoop layer), or the polar openings of a vessel or a profile.
+    fn ends(&self, mandrel: &Mandrel, hoop: bool) -> Result<Ends, WindingError> {
+        Ok(match mandrel {
             Mandrel::Cylinder(_) | Mandrel::Cone(_) if hoop => {
                 if self.winding_angle_deg.is_some() {
                     return Err(WindingError::field(
@@ -122,8 +173,12 @@ impl WindingSpec {
                     end: t.r(b),
                 }
             }
-        };
-        let turnaround = match self.turnaround.as_deref() {
+        })
+    }
+
+    /// How a tube's pass turns: `extension` (the default) or `friction`.
+    fn turnaround(&self, mandrel: &Mandrel, hoop: bool) -> Result<TubeTurn, WindingError> {
+        Ok(match self.turnaround.as_deref() {
             Some(_) if !mandrel.is_tube() => {
                 return Err(WindingError::field(
                     "winding.turnaround",
@@ -148,34 +203,6 @@ impl WindingSpec {
                     ),
                 ));
             }
-        };
-        let default_dwell = if mandrel.is_tube() && turnaround == TubeTurn::Extension {
-            180.0
-        } else {
-            0.0
-        };
-        let defaults = LayerSpec::default();
-        Ok(LayerSpec {
-            slippage,
-            ends,
-            band_width: need(
-                "winding.band_width",
-                self.band_width,
-                "band width in mm, > 0",
-            )?,
-            band_thickness: need(
-                "winding.band_thickness",
-                self.band_thickness,
-                "band thickness in mm, > 0",
-            )?,
-            overlap: self.overlap.unwrap_or(0.0),
-            pattern_number: self.pattern_number,
-            skip_index: self.skip_index,
-            dwell_min: self.dwell_min_deg.unwrap_or(default_dwell).to_radians(),
-            mu_limit: self.mu_limit.unwrap_or(defaults.mu_limit),
-            samples: self.samples.unwrap_or(defaults.samples),
-            minimax_nodes: defaults.minimax_nodes,
-            turnaround,
         })
     }
 }

@@ -21,6 +21,7 @@
 
 use formcam_geom::{Jet, Meridian};
 
+use crate::ode::bisect;
 use crate::{PathPoint, WindingError};
 
 /// The optimal path of the minimax problem, sampled on a grid in `z`.
@@ -226,7 +227,9 @@ fn least_worst_mu(g: &Grid, m_end: f64, mu_limit: f64) -> Result<f64, WindingErr
         hi_m = 0.0;
     }
     if hi_m > 0.0 {
-        hi_m = bisect(&feasible, m_end, hi_m);
+        // To 1e-8 relative: far below the grid's own discretisation error
+        // (about 1e-5 relative).
+        hi_m = bisect(feasible, m_end, hi_m, 60, 1e-8);
     }
     Ok(hi_m)
 }
@@ -264,24 +267,6 @@ fn feasible_bound(
         }
     }
     Ok(hi_m)
-}
-
-/// Bisection between the infeasible `lo_m` and the feasible `hi_m`: the
-/// smallest feasible bound found.
-fn bisect(feasible: &impl Fn(f64) -> bool, mut lo_m: f64, mut hi_m: f64) -> f64 {
-    for _ in 0..60 {
-        let mid = 0.5 * (lo_m + hi_m);
-        if feasible(mid) {
-            hi_m = mid;
-        } else {
-            lo_m = mid;
-        }
-        // Far below the grid's own discretisation error (about 1e-5 relative).
-        if hi_m - lo_m <= 1e-8 * hi_m {
-            break;
-        }
-    }
-    hi_m
 }
 
 /// The path at the optimum `hi_m` and the worst-case slippage it is laid at.

@@ -16,7 +16,7 @@
 use formcam_geom::Meridian;
 
 use crate::minimax::b_factor;
-use crate::ode::{Control, Integrator, Outcome, Tolerance, find_root};
+use crate::ode::{Control, Integrator, Outcome, Tolerance, bisect, find_root};
 use crate::{MuLaw, MuSegment, WindingError};
 
 /// The friction turn-arounds of a tube's pass.
@@ -177,16 +177,5 @@ fn least_fitting_mu(fits: &impl Fn(f64) -> bool, mu: f64) -> f64 {
             return f64::INFINITY;
         }
     }
-    for _ in 0..100 {
-        let mid = 0.5 * (lo + hi);
-        if fits(mid) {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-        if hi - lo <= 1e-12 * hi {
-            break;
-        }
-    }
-    hi
+    bisect(fits, lo, hi, 100, 1e-12)
 }

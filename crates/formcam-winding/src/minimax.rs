@@ -21,6 +21,7 @@
 
 use formcam_geom::{Jet, Meridian};
 
+use crate::ode::bisect;
 use crate::{PathPoint, WindingError};
 
 /// The optimal path of the minimax problem, sampled on a grid in `z`.
@@ -170,9 +171,35 @@ pub fn minimax<M: Meridian>(
     mu_limit: f64,
 ) -> Result<MinimaxPath, WindingError> {
     let g = Grid::new(m, nodes.max(16));
-    let n = g.n();
     let m_end = turn_bound(&g);
+    check_turn_bound(m, &g, m_end, mu_limit)?;
+    // The optimum is the smallest feasible worst-case slippage of the bisection.
+    let mu_max = least_worst_mu(&g, m_end, mu_limit)?;
+    let (c, m_path) = lay_path(&g, mu_max)?;
+    let mut mu = interval_mu(&g, &c);
+    mu.push(*mu.last().unwrap_or(&0.0));
+    let bridging_active = bridging_intervals(&g, &c);
+    Ok(MinimaxPath {
+        z: g.z,
+        c,
+        c_bridge: g.cb,
+        mu,
+        mu_max,
+        mu_path: m_path,
+        bridging_active,
+    })
+}
+
+/// Checks that the turn-arounds' least `|mu|` (`m_end`, [`turn_bound`]) is
+/// within `mu_limit`, naming the end that needs it.
+fn check_turn_bound<M: Meridian>(
+    m: &M,
+    g: &Grid,
+    m_end: f64,
+    mu_limit: f64,
+) -> Result<(), WindingError> {
     if m_end > mu_limit {
+        let n = g.n();
         let (za, zb) = m.z_range();
         let (z, slope) = if -g.node[0].dr >= g.node[n].dr {
             (za, g.node[0].dr)
@@ -187,7 +214,35 @@ pub fn minimax<M: Meridian>(
             ),
         ));
     }
+    Ok(())
+}
+
+/// The least worst-case `|mu|` that reaches the far opening: a feasible bound
+/// found by doubling from `m_end`, then bisection down to it (0 where the
+/// geodesic reaches it).
+fn least_worst_mu(g: &Grid, m_end: f64, mu_limit: f64) -> Result<f64, WindingError> {
     let feasible = |mu: f64| mu >= m_end && g.feasible(mu);
+    let mut hi_m = feasible_bound(g, &feasible, m_end, mu_limit)?;
+    if feasible(0.0) {
+        hi_m = 0.0;
+    }
+    if hi_m > 0.0 {
+        // To 1e-8 relative: far below the grid's own discretisation error
+        // (about 1e-5 relative).
+        hi_m = bisect(feasible, m_end, hi_m, 60, 1e-8);
+    }
+    Ok(hi_m)
+}
+
+/// A feasible worst-case `|mu|`: from `m_end` (or 1e-3) doubled until feasible,
+/// `mu_limit` itself as the last try; the error that no band lies on the
+/// meridian within `mu_limit`.
+fn feasible_bound(
+    g: &Grid,
+    feasible: &impl Fn(f64) -> bool,
+    m_end: f64,
+    mu_limit: f64,
+) -> Result<f64, WindingError> {
     let mut hi_m = 1e-3f64.min(mu_limit).max(m_end);
     while !feasible(hi_m) {
         hi_m *= 2.0;
@@ -211,55 +266,41 @@ pub fn minimax<M: Meridian>(
             ));
         }
     }
-    let mut lo_m = m_end;
-    if feasible(0.0) {
-        hi_m = 0.0;
-    }
-    if hi_m > 0.0 {
-        for _ in 0..60 {
-            let mid = 0.5 * (lo_m + hi_m);
-            if feasible(mid) {
-                hi_m = mid;
-            } else {
-                lo_m = mid;
-            }
-            // Far below the grid's own discretisation error (about 1e-5 relative).
-            if hi_m - lo_m <= 1e-8 * hi_m {
-                break;
-            }
-        }
-    }
-    // Build the path with a hair of slack so both tubes are non-degenerate. Where
-    // that path would touch a turn-around inside the pass (C = r: a hoop, with an
-    // infinite turn angle), the optimum is an infimum no path attains: the path is
-    // then laid a little above it, kept off C = r (see [`build`]).
-    let mut built = None;
+    Ok(hi_m)
+}
+
+/// The path at the optimum `hi_m` and the worst-case slippage it is laid at.
+/// It is built with a hair of slack so both tubes are non-degenerate. Where
+/// that path would touch a turn-around inside the pass (C = r: a hoop, with an
+/// infinite turn angle), the optimum is an infimum no path attains: the path is
+/// then laid a little above it, kept off C = r (see [`build`]).
+fn lay_path(g: &Grid, hi_m: f64) -> Result<(Vec<f64>, f64), WindingError> {
     for (slack, lift) in builds() {
         let m_path = hi_m * (1.0 + slack);
-        let c = build(&g, m_path, lift)?;
-        if clear_of_turns(&g, &c) && (lift.is_none() || worst_mu(&g, &c) <= m_path * (1.0 + 1e-3)) {
-            built = Some((c, m_path));
-            break;
+        let c = build(g, m_path, lift)?;
+        if clear_of_turns(g, &c) && (lift.is_none() || worst_mu(g, &c) <= m_path * (1.0 + 1e-3)) {
+            return Ok((c, m_path));
         }
     }
-    let Some((c, m_path)) = built else {
-        let c = build(&g, hi_m * (1.0 + 1e-7), None)?;
-        let z_touch = (1..n)
-            .find(|&i| !clear_at(&g, &c, i))
-            .map_or(g.z[n / 2], |i| g.z[i]);
-        return Err(WindingError::infeasible(
-            "winding.mu",
-            format!(
-                "the least-slippage path touches a turn-around inside the mandrel at z = {z_touch:.3} mm \
-                 (C = r): the band cannot run from one polar opening to the other on this meridian \
-                 (a meridian that neither narrows nor widens towards an end has no least slippage)"
-            ),
-        ));
-    };
-    let mut mu = interval_mu(&g, &c);
-    mu.push(*mu.last().unwrap_or(&0.0));
-    // The optimum is the smallest feasible worst-case slippage of the bisection.
-    let mu_max = hi_m;
+    let n = g.n();
+    let c = build(g, hi_m * (1.0 + 1e-7), None)?;
+    let z_touch = (1..n)
+        .find(|&i| !clear_at(g, &c, i))
+        .map_or(g.z[n / 2], |i| g.z[i]);
+    Err(WindingError::infeasible(
+        "winding.mu",
+        format!(
+            "the least-slippage path touches a turn-around inside the mandrel at z = {z_touch:.3} mm \
+             (C = r): the band cannot run from one polar opening to the other on this meridian \
+             (a meridian that neither narrows nor widens towards an end has no least slippage)"
+        ),
+    ))
+}
+
+/// The `z` intervals where the path `c` lies on the bridging limit (within
+/// 1e-6 of the largest radius).
+fn bridging_intervals(g: &Grid, c: &[f64]) -> Vec<(f64, f64)> {
+    let n = g.n();
     let rmax = g.node.iter().fold(0.0f64, |a, j| a.max(j.r));
     let mut bridging_active = Vec::new();
     let mut open: Option<f64> = None;
@@ -278,15 +319,7 @@ pub fn minimax<M: Meridian>(
     if let Some(a) = open {
         bridging_active.push((a, g.z[n]));
     }
-    Ok(MinimaxPath {
-        z: g.z,
-        c,
-        c_bridge: g.cb,
-        mu,
-        mu_max,
-        mu_path: m_path,
-        bridging_active,
-    })
+    bridging_active
 }
 
 /// The least `|mu|` the two turn-arounds need: `-r'` at the start and `r'` at the

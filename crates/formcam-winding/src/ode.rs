@@ -285,6 +285,30 @@ impl<const N: usize, F: FnMut(f64, &[f64; N]) -> [f64; N]> Integrator<N, F> {
     }
 }
 
+/// Bisection on a monotone test: from `lo`, where `fits` fails, and `hi`, where
+/// it holds, at most `steps` halvings, until the bracket is within `rtol` of
+/// `hi`; the last `hi`.
+pub(crate) fn bisect(
+    fits: impl Fn(f64) -> bool,
+    mut lo: f64,
+    mut hi: f64,
+    steps: usize,
+    rtol: f64,
+) -> f64 {
+    for _ in 0..steps {
+        let mid = 0.5 * (lo + hi);
+        if fits(mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+        if hi - lo <= rtol * hi {
+            break;
+        }
+    }
+    hi
+}
+
 /// Finds `t` in `[a, b]` where `g` changes sign (`g(a)`, `g(b)` of opposite signs),
 /// by the Illinois variant of regula falsi, until the bracket is narrower than
 /// `xtol` or `|g| <= ftol`.

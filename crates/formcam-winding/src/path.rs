@@ -118,64 +118,109 @@ pub fn trace<M: Meridian>(
     alpha0: f64,
     opts: &TraceOptions,
 ) -> Result<Trace, WindingError> {
-    let (za, zb) = m.z_range();
-    let mut cuts: Vec<f64> = m.breakpoints();
-    cuts.extend(law.breakpoints());
-    cuts.retain(|z| *z > za && *z < zb);
-    cuts.sort_by(f64::total_cmp);
-    cuts.dedup();
-    let scale = zb - za;
-    let mut tol = opts.tol;
-    tol.h_max = tol.h_max.min(0.05 * scale + 0.05 * m.r(za).max(m.r(zb)));
-    let mut steps: Vec<Step<3>> = Vec::new();
-    let mut t = 0.0;
-    let mut y = [za, 0.0, alpha0];
-    // A pass that starts at a turn-around must move into the mandrel: alpha has to
-    // fall below pi/2, i.e. the meridian must rise faster than the slippage lets it turn.
-    if alpha0 >= FRAC_PI_2 && rhs(m, law, &y)[2] >= 0.0 {
-        return Err(WindingError::infeasible(
-            "winding.mu",
-            format!(
-                "the pass cannot leave the start opening at z = {za:.3} mm: the meridian's slope \
-                 r' = {:.4} there must exceed the slippage mu = {:.4}",
-                m.dr(za),
-                law.at(za)
-            ),
-        ));
+    let tracer = Tracer::new(m, law, opts);
+    let y0 = [tracer.za, 0.0, alpha0];
+    tracer.check_start(&y0)?;
+    tracer.integrate(y0)
+}
+
+/// One pass being integrated: the meridian, the slippage law, the options and
+/// what holds for the whole pass.
+struct Tracer<'a, M> {
+    m: &'a M,
+    law: &'a MuLaw,
+    opts: &'a TraceOptions,
+    /// The options' tolerances, the largest step bounded by the mandrel's size.
+    tol: Tolerance,
+    /// The meridian's start, mm.
+    za: f64,
+    /// The meridian's end, mm.
+    zb: f64,
+    /// `zb - za`, mm.
+    scale: f64,
+    /// Where the integration stops and restarts: the meridian's and the law's
+    /// breakpoints inside the meridian, in order.
+    cuts: Vec<f64>,
+}
+
+impl<'a, M: Meridian> Tracer<'a, M> {
+    fn new(m: &'a M, law: &'a MuLaw, opts: &'a TraceOptions) -> Self {
+        let (za, zb) = m.z_range();
+        let mut cuts: Vec<f64> = m.breakpoints();
+        cuts.extend(law.breakpoints());
+        cuts.retain(|z| *z > za && *z < zb);
+        cuts.sort_by(f64::total_cmp);
+        cuts.dedup();
+        let scale = zb - za;
+        let mut tol = opts.tol;
+        tol.h_max = tol.h_max.min(0.05 * scale + 0.05 * m.r(za).max(m.r(zb)));
+        Self {
+            m,
+            law,
+            opts,
+            tol,
+            za,
+            zb,
+            scale,
+            cuts,
+        }
     }
-    let mut h0 = 1e-3 * scale;
-    loop {
-        let next_cut = cuts.iter().copied().find(|c| *c > y[0] + 1e-12);
+
+    /// A pass that starts at a turn-around must move into the mandrel: alpha has
+    /// to fall below pi/2, i.e. the meridian must rise faster than the slippage
+    /// lets it turn.
+    fn check_start(&self, y0: &[f64; 3]) -> Result<(), WindingError> {
+        let (m, law, za) = (self.m, self.law, self.za);
+        if y0[2] >= FRAC_PI_2 && rhs(m, law, y0)[2] >= 0.0 {
+            return Err(WindingError::infeasible(
+                "winding.mu",
+                format!(
+                    "the pass cannot leave the start opening at z = {za:.3} mm: the meridian's slope \
+                     r' = {:.4} there must exceed the slippage mu = {:.4}",
+                    m.dr(za),
+                    law.at(za)
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Integrates from `y` event by event, restarting exactly on each cut,
+    /// until an event ends the pass.
+    fn integrate(&self, mut y: [f64; 3]) -> Result<Trace, WindingError> {
+        let mut steps: Vec<Step<3>> = Vec::new();
+        let mut t = 0.0;
+        let mut h0 = 1e-3 * self.scale;
+        loop {
+            let (t1, y1, ev) = self.run_to_event(&mut steps, t, y, h0)?;
+            t = t1;
+            y = y1;
+            h0 = steps.last().map_or(h0, |s| s.h.max(1e-6 * self.scale));
+            let Event::Cut(zc) = ev else {
+                return self.finish(ev, steps, t, y);
+            };
+            y[0] = zc;
+            if let Some(last) = steps.last_mut() {
+                last.y1[0] = zc;
+            }
+        }
+    }
+
+    /// One run of the integrator from `(t, y)` to the next event, the accepted
+    /// steps pushed on `steps`; an error where the integration fails.
+    fn run_to_event(
+        &self,
+        steps: &mut Vec<Step<3>>,
+        t: f64,
+        y: [f64; 3],
+        h0: f64,
+    ) -> Result<(f64, [f64; 3], Event), WindingError> {
+        let (m, law) = (self.m, self.law);
+        let next_cut = self.cuts.iter().copied().find(|c| *c > y[0] + 1e-12);
         let mut ev: Option<Event> = None;
-        let mut integ = Integrator::new(|_s, y: &[f64; 3]| rhs(m, law, y), tol);
+        let mut integ = Integrator::new(|_s, y: &[f64; 3]| rhs(m, law, y), self.tol);
         let (outcome, t1, y1) = integ.run(t, y, f64::INFINITY, h0, |st| {
-            if ev.is_some() {
-                steps.push(*st);
-                return Control::Stop;
-            }
-            let found = first_event(st, next_cut, zb, opts);
-            match found {
-                Some((ts, e)) => {
-                    ev = Some(e);
-                    Control::StopAt(ts)
-                }
-                None => {
-                    steps.push(*st);
-                    if !opts.exit_at_end && st.y1[0] > zb + opts.overrun {
-                        ev = Some(Event::Overrun);
-                        return Control::Stop;
-                    }
-                    if st.y1[0] < za - 1e-9 * scale {
-                        ev = Some(Event::Backwards);
-                        return Control::Stop;
-                    }
-                    if st.y1[2] < 0.0 {
-                        ev = Some(Event::NegativeClairaut(st.y1[0]));
-                        return Control::Stop;
-                    }
-                    Control::Continue
-                }
-            }
+            self.observe(st, next_cut, steps, &mut ev)
         });
         if outcome == Outcome::TooManySteps {
             return Err(WindingError::Integration {
@@ -183,76 +228,116 @@ pub fn trace<M: Meridian>(
                 reason: format!(
                     "the pass needs more than {} integration steps: it is too long for its mandrel \
                      (a winding angle too close to 90 deg?)",
-                    tol.max_steps
+                    self.tol.max_steps
                 ),
             });
         }
-        if outcome == Outcome::Failed || ev.is_none() {
-            return Err(WindingError::Integration {
+        match ev {
+            Some(ev) if outcome != Outcome::Failed => Ok((t1, y1, ev)),
+            _ => Err(WindingError::Integration {
                 z: y1[0],
                 reason:
                     "the step size collapsed: the meridian's slope is nearly infinite there or the \
                          slippage makes the path singular"
                         .into(),
-            });
+            }),
         }
-        t = t1;
-        y = y1;
-        h0 = steps.last().map_or(h0, |s| s.h.max(1e-6 * scale));
-        match ev {
-            Some(Event::Cut(zc)) => {
-                y[0] = zc;
-                if let Some(last) = steps.last_mut() {
-                    last.y1[0] = zc;
-                }
+    }
+
+    /// The integrator's look at an accepted step: the step kept, and the run
+    /// stopped at the first event in it (or after it, where the path overruns
+    /// the end, turns back past the start or its Clairaut function turns
+    /// negative).
+    fn observe(
+        &self,
+        st: &Step<3>,
+        next_cut: Option<f64>,
+        steps: &mut Vec<Step<3>>,
+        ev: &mut Option<Event>,
+    ) -> Control {
+        if ev.is_some() {
+            steps.push(*st);
+            return Control::Stop;
+        }
+        let found = first_event(st, next_cut, self.zb, self.opts);
+        match found {
+            Some((ts, e)) => {
+                *ev = Some(e);
+                Control::StopAt(ts)
             }
-            Some(Event::Turn) => {
+            None => {
+                steps.push(*st);
+                if !self.opts.exit_at_end && st.y1[0] > self.zb + self.opts.overrun {
+                    *ev = Some(Event::Overrun);
+                    return Control::Stop;
+                }
+                if st.y1[0] < self.za - 1e-9 * self.scale {
+                    *ev = Some(Event::Backwards);
+                    return Control::Stop;
+                }
+                if st.y1[2] < 0.0 {
+                    *ev = Some(Event::NegativeClairaut(st.y1[0]));
+                    return Control::Stop;
+                }
+                Control::Continue
+            }
+        }
+    }
+
+    /// The pass ended by `ev` at `(t, y)`: a turn-around, an exit at the end,
+    /// or the error that the path cannot be wound.
+    fn finish(
+        &self,
+        ev: Event,
+        steps: Vec<Step<3>>,
+        t: f64,
+        mut y: [f64; 3],
+    ) -> Result<Trace, WindingError> {
+        let (za, zb) = (self.za, self.zb);
+        match ev {
+            Event::Turn => {
                 y[2] = FRAC_PI_2;
-                return Ok(Trace {
+                Ok(Trace {
                     steps,
                     end: PassEnd::TurnAround { z: y[0] },
                     length: t,
                     last: y,
-                });
+                })
             }
-            Some(Event::Exit) => {
+            Event::Exit => {
                 y[0] = zb;
-                return Ok(Trace {
+                Ok(Trace {
                     steps,
                     end: PassEnd::Exit { z: zb, alpha: y[2] },
                     length: t,
                     last: y,
-                });
+                })
             }
-            Some(Event::NegativeClairaut(z)) => {
-                return Err(WindingError::infeasible(
-                    "winding.mu",
-                    format!(
-                        "the Clairaut function r sin(alpha) becomes negative near z = {z:.3} mm: the \
-                         path would reverse its turn about the axis (eq. 6 needs C >= 0); reduce |mu|"
-                    ),
-                ));
-            }
-            Some(Event::Backwards) => {
-                return Err(WindingError::infeasible(
-                    "winding.mu",
-                    format!(
-                        "the path turns back and leaves the mandrel through its start (z = {za:.3} mm); \
-                         the slippage is too large for this meridian"
-                    ),
-                ));
-            }
-            Some(Event::Overrun) | None => {
-                return Ok(Trace {
-                    steps,
-                    end: PassEnd::Exit {
-                        z: y[0],
-                        alpha: y[2],
-                    },
-                    length: t,
-                    last: y,
-                });
-            }
+            Event::NegativeClairaut(z) => Err(WindingError::infeasible(
+                "winding.mu",
+                format!(
+                    "the Clairaut function r sin(alpha) becomes negative near z = {z:.3} mm: the \
+                     path would reverse its turn about the axis (eq. 6 needs C >= 0); reduce |mu|"
+                ),
+            )),
+            Event::Backwards => Err(WindingError::infeasible(
+                "winding.mu",
+                format!(
+                    "the path turns back and leaves the mandrel through its start (z = {za:.3} mm); \
+                     the slippage is too large for this meridian"
+                ),
+            )),
+            // An overrun ends the pass where it stands; a cut never ends it
+            // (`integrate` restarts there).
+            Event::Overrun | Event::Cut(_) => Ok(Trace {
+                steps,
+                end: PassEnd::Exit {
+                    z: y[0],
+                    alpha: y[2],
+                },
+                length: t,
+                last: y,
+            }),
         }
     }
 }

@@ -5,6 +5,7 @@ use super::Machine;
 use crate::MachineError;
 use crate::file::MachineFile;
 
+mod axis;
 mod joint;
 mod links;
 mod numbers;

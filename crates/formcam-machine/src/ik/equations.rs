@@ -111,21 +111,145 @@ impl<'a> Equations<'a> {
 
     /// The residuals at the axis values, with their Jacobian when asked.
     pub(super) fn eval(&self, with_jacobian: bool) -> Evaluated {
-        let m = self.m;
-        let roles = &m.roles;
         let mut buf = self.poses.borrow_mut();
         self.fk.poses_into(&self.q, &mut buf);
         let poses: &[Isometry3<f64>] = &buf;
+        let at = World::at(self.m, self.t, poses);
+        let rows = orientation_rows(self.m);
+        let r = at.residuals(self.m.roles.kind, rows);
+        let jac = with_jacobian.then(|| self.jacobian(poses, &at, rows, r.len()));
+        Evaluated { r, jac }
+    }
+
+    /// The Jacobian of the `n` residuals: a column per unknown.
+    fn jacobian(
+        &self,
+        poses: &[Isometry3<f64>],
+        at: &World,
+        rows: usize,
+        n: usize,
+    ) -> DMatrix<f64> {
+        let mut j = DMatrix::zeros(n, self.unknowns.len());
+        for (c, &ax) in self.unknowns.iter().enumerate() {
+            self.column(poses, at, rows, ax, &mut j, c);
+        }
+        j
+    }
+
+    /// Column `c` of the Jacobian `j`: the residuals' derivatives by axis `ax`.
+    fn column(
+        &self,
+        poses: &[Isometry3<f64>],
+        at: &World,
+        rows: usize,
+        ax: usize,
+        j: &mut DMatrix<f64>,
+        c: usize,
+    ) {
+        let m = self.m;
+        let (o, w) = joint_axis(m, poses, m.axes[ax].link);
+        let motion = Motion {
+            o,
+            w,
+            rev: m.axes[ax].kind == JointKind::Revolute,
+        };
+        let (moves_head, moves_mandrel) = self.moves[ax];
+        let (band, normal, side) = (&at.band, &at.normal, &at.side);
+        let dp = motion.point(&at.p, moves_head) - motion.point(&at.target, moves_mandrel);
+        j[(0, c)] = dp.x;
+        j[(1, c)] = dp.y;
+        j[(2, c)] = dp.z;
+        let d_band = motion.direction(band, moves_mandrel);
+        let d_normal = motion.direction(normal, moves_mandrel);
+        let s = ORIENTATION_SCALE;
+        let mut row = 3;
+        let mut put = |v: f64| {
+            j[(row, c)] = s * v;
+            row += 1;
+        };
+        match m.roles.kind {
+            MachineKind::Winder => {
+                if let Some(a) = at.roller {
+                    let da = motion.direction(&a, moves_head);
+                    if rows >= 1 {
+                        put(da.dot(band) + a.dot(&d_band));
+                    }
+                    if rows >= 2 {
+                        put(da.dot(normal) + a.dot(&d_normal));
+                    }
+                }
+            }
+            MachineKind::Placement => {
+                let n = at.press.unwrap_or_else(Vector3::z);
+                let dn = motion.direction(&n, moves_head);
+                let d_side = d_normal.cross(band) + normal.cross(&d_band);
+                put(dn.dot(band) + n.dot(&d_band));
+                put(dn.dot(side) + n.dot(&d_side));
+                put(dn.dot(normal) + n.dot(&d_normal));
+                if let Some(a) = at.roller {
+                    let da = motion.direction(&a, moves_head);
+                    put(da.dot(band) + a.dot(&d_band));
+                }
+            }
+        }
+    }
+}
+
+/// What the equations compare, in the world frame at the axis values.
+struct World {
+    /// The payout point.
+    p: Point3<f64>,
+    /// The target point.
+    target: Point3<f64>,
+    /// The target's band direction.
+    band: Vector3<f64>,
+    /// The mandrel's normal at the target.
+    normal: Vector3<f64>,
+    /// The roller's axis, where the machine has one.
+    roller: Option<Vector3<f64>>,
+    /// The head's pressing direction, where the machine has one.
+    press: Option<Vector3<f64>>,
+    /// Across the band on the surface: `normal × band`.
+    side: Vector3<f64>,
+}
+
+impl World {
+    /// The world quantities of `m` at `t` for the link poses `poses`.
+    fn at(m: &Machine, t: &Target, poses: &[Isometry3<f64>]) -> Self {
+        let roles = &m.roles;
         let payout = &m.points[roles.payout];
         let head = poses[payout.link];
         let mandrel = poses[roles.mandrel];
         let p = head * payout.position;
-        let target = mandrel * self.t.point;
-        let band = mandrel.rotation * self.t.band.into_inner();
-        let normal = mandrel.rotation * self.t.normal.into_inner();
+        let target = mandrel * t.point;
+        let band = mandrel.rotation * t.band.into_inner();
+        let normal = mandrel.rotation * t.normal.into_inner();
         let roller = roles.roller_axis.map(|a| head.rotation * a.into_inner());
         let press = roles.head_normal.map(|a| head.rotation * a.into_inner());
         let side = normal.cross(&band);
+        Self {
+            p,
+            target,
+            band,
+            normal,
+            roller,
+            press,
+            side,
+        }
+    }
+
+    /// The residuals: the position's, then `rows` orientation rows of a
+    /// machine of `kind`, scaled by [`ORIENTATION_SCALE`].
+    fn residuals(&self, kind: MachineKind, rows: usize) -> Residuals {
+        let Self {
+            p,
+            target,
+            band,
+            normal,
+            roller,
+            press,
+            side,
+        } = self;
         let s = ORIENTATION_SCALE;
         let mut r = Residuals {
             v: [
@@ -139,94 +263,63 @@ impl<'a> Equations<'a> {
             ],
             n: 3,
         };
-        let rows = orientation_rows(m);
-        match roles.kind {
+        match kind {
             MachineKind::Winder => {
                 if let Some(a) = roller {
                     if rows >= 1 {
-                        r.push(s * a.dot(&band));
+                        r.push(s * a.dot(band));
                     }
                     if rows >= 2 {
-                        r.push(s * a.dot(&normal));
+                        r.push(s * a.dot(normal));
                     }
                 }
             }
             MachineKind::Placement => {
                 let n = press.unwrap_or_else(Vector3::z);
-                r.push(s * n.dot(&band));
-                r.push(s * n.dot(&side));
+                r.push(s * n.dot(band));
+                r.push(s * n.dot(side));
                 // Zero where the head presses along `-m`, 2 where along `+m`
                 // (which the two rows above allow too).
-                r.push(s * (1.0 + n.dot(&normal)));
+                r.push(s * (1.0 + n.dot(normal)));
                 if let Some(a) = roller {
-                    r.push(s * a.dot(&band));
+                    r.push(s * a.dot(band));
                 }
             }
         }
-        let jac = with_jacobian.then(|| {
-            let mut j = DMatrix::zeros(r.len(), self.unknowns.len());
-            for (c, &ax) in self.unknowns.iter().enumerate() {
-                let link = m.axes[ax].link;
-                let (o, w) = joint_axis(m, poses, link);
-                let rev = m.axes[ax].kind == JointKind::Revolute;
-                let (moves_head, moves_mandrel) = self.moves[ax];
-                // Derivatives of a point and of a direction carried by the joint.
-                let dpt = |x: &Point3<f64>, moved: bool| {
-                    if !moved {
-                        Vector3::zeros()
-                    } else if rev {
-                        w.cross(&(x - o))
-                    } else {
-                        w
-                    }
-                };
-                let ddir = |d: &Vector3<f64>, moved: bool| {
-                    if moved && rev {
-                        w.cross(d)
-                    } else {
-                        Vector3::zeros()
-                    }
-                };
-                let dp = dpt(&p, moves_head) - dpt(&target, moves_mandrel);
-                j[(0, c)] = dp.x;
-                j[(1, c)] = dp.y;
-                j[(2, c)] = dp.z;
-                let d_band = ddir(&band, moves_mandrel);
-                let d_normal = ddir(&normal, moves_mandrel);
-                let mut row = 3;
-                let mut put = |v: f64| {
-                    j[(row, c)] = s * v;
-                    row += 1;
-                };
-                match roles.kind {
-                    MachineKind::Winder => {
-                        if let Some(a) = roller {
-                            let da = ddir(&a, moves_head);
-                            if rows >= 1 {
-                                put(da.dot(&band) + a.dot(&d_band));
-                            }
-                            if rows >= 2 {
-                                put(da.dot(&normal) + a.dot(&d_normal));
-                            }
-                        }
-                    }
-                    MachineKind::Placement => {
-                        let n = press.unwrap_or_else(Vector3::z);
-                        let dn = ddir(&n, moves_head);
-                        let d_side = d_normal.cross(&band) + normal.cross(&d_band);
-                        put(dn.dot(&band) + n.dot(&d_band));
-                        put(dn.dot(&side) + n.dot(&d_side));
-                        put(dn.dot(&normal) + n.dot(&d_normal));
-                        if let Some(a) = roller {
-                            let da = ddir(&a, moves_head);
-                            put(da.dot(&band) + a.dot(&d_band));
-                        }
-                    }
-                }
-            }
-            j
-        });
-        Evaluated { r, jac }
+        r
+    }
+}
+
+/// The motion of one axis's joint: a turn about, or a slide along, `w`
+/// through `o`.
+struct Motion {
+    /// A point on the joint's line.
+    o: Point3<f64>,
+    /// The joint's direction.
+    w: Vector3<f64>,
+    /// Whether it turns.
+    rev: bool,
+}
+
+impl Motion {
+    /// The derivative of the point `x`, carried by the joint when `moved`.
+    fn point(&self, x: &Point3<f64>, moved: bool) -> Vector3<f64> {
+        if !moved {
+            Vector3::zeros()
+        } else if self.rev {
+            self.w.cross(&(x - self.o))
+        } else {
+            self.w
+        }
+    }
+
+    /// The derivative of the direction `d`, carried by the joint when `moved`.
+    fn direction(&self, d: &Vector3<f64>, moved: bool) -> Vector3<f64> {
+        if moved && self.rev {
+            self.w.cross(d)
+        } else {
+            Vector3::zeros()
+        }
     }
 }
 

@@ -1,27 +1,28 @@
-//! A link's solid (`[[link.visual]]`) checked.
+//! A link's solid (`[[link.visual]]`) checked: its shape, its colour, a
+//! mesh's scale.
 
 use super::placement::iso;
 use crate::MachineError;
 use crate::file::VisualSpec;
 use crate::machine::{Shape, Visual};
 
+/// The solid `v` of `place` (a link, or the bed).
 pub(crate) fn visual(v: &VisualSpec, place: &str) -> Result<Visual, MachineError> {
-    let need = |x: Option<f64>, field: &str| -> Result<f64, MachineError> {
-        match x {
-            Some(x) if x.is_finite() && x > 0.0 => Ok(x),
-            Some(x) => Err(MachineError::field(
-                place,
-                format!("visual.{field}"),
-                format!("must be a finite number > 0, got {x}"),
-            )),
-            None => Err(MachineError::field(
-                place,
-                format!("visual.{field}"),
-                format!("missing for a {}", v.shape),
-            )),
-        }
-    };
-    let shape = match v.shape.as_str() {
+    let shape = shape(v, place)?;
+    let color = color(v, place)?;
+    let scale = scale(v, &shape, place)?;
+    Ok(Visual {
+        shape,
+        origin: iso(&v.origin),
+        color,
+        scale,
+    })
+}
+
+/// The shape with its dimensions, each finite and positive.
+fn shape(v: &VisualSpec, place: &str) -> Result<Shape, MachineError> {
+    let need = |x, field| dimension(v, x, place, field);
+    Ok(match v.shape.as_str() {
         "box" => {
             let s = v.size.ok_or_else(|| {
                 MachineError::field(place, "visual.size", "missing for a box: [x, y, z] in mm")
@@ -50,7 +51,11 @@ pub(crate) fn visual(v: &VisualSpec, place: &str) -> Result<Visual, MachineError
                 format!("unknown shape \"{other}\" (box, cylinder, sphere or mesh)"),
             ));
         }
-    };
+    })
+}
+
+/// The colour `#rrggbb`, grey when not given.
+fn color(v: &VisualSpec, place: &str) -> Result<String, MachineError> {
     let color = v.color.clone().unwrap_or_else(|| "#9aa4b1".to_string());
     let hex = color.strip_prefix('#').unwrap_or("");
     if hex.len() != 6 || !hex.chars().all(|c| c.is_ascii_hexdigit()) {
@@ -60,26 +65,45 @@ pub(crate) fn visual(v: &VisualSpec, place: &str) -> Result<Visual, MachineError
             format!("\"{color}\" is not a colour #rrggbb"),
         ));
     }
-    let scale = match (v.scale, &shape) {
-        (None, _) => [1.0; 3],
+    Ok(color)
+}
+
+/// A mesh's factor per axis, each finite and positive (1 when not given).
+fn scale(v: &VisualSpec, shape: &Shape, place: &str) -> Result<[f64; 3], MachineError> {
+    match (v.scale, shape) {
+        (None, _) => Ok([1.0; 3]),
         (Some(s), Shape::Mesh(_)) => {
             for c in s {
-                need(Some(c), "scale")?;
+                dimension(v, Some(c), place, "scale")?;
             }
-            s
+            Ok(s)
         }
-        (Some(_), _) => {
-            return Err(MachineError::field(
-                place,
-                "visual.scale",
-                "only for a mesh",
-            ));
-        }
-    };
-    Ok(Visual {
-        shape,
-        origin: iso(&v.origin),
-        color,
-        scale,
-    })
+        (Some(_), _) => Err(MachineError::field(
+            place,
+            "visual.scale",
+            "only for a mesh",
+        )),
+    }
+}
+
+/// The dimension `x` of the solid `v`'s `field`: given, finite and positive.
+fn dimension(
+    v: &VisualSpec,
+    x: Option<f64>,
+    place: &str,
+    field: &str,
+) -> Result<f64, MachineError> {
+    match x {
+        Some(x) if x.is_finite() && x > 0.0 => Ok(x),
+        Some(x) => Err(MachineError::field(
+            place,
+            format!("visual.{field}"),
+            format!("must be a finite number > 0, got {x}"),
+        )),
+        None => Err(MachineError::field(
+            place,
+            format!("visual.{field}"),
+            format!("missing for a {}", v.shape),
+        )),
+    }
 }

@@ -241,15 +241,7 @@ impl World {
     /// The residuals: the position's, then `rows` orientation rows of a
     /// machine of `kind`, scaled by [`ORIENTATION_SCALE`].
     fn residuals(&self, kind: MachineKind, rows: usize) -> Residuals {
-        let Self {
-            p,
-            target,
-            band,
-            normal,
-            roller,
-            press,
-            side,
-        } = self;
+        let (p, target, band, normal) = (&self.p, &self.target, &self.band, &self.normal);
         let s = ORIENTATION_SCALE;
         let mut r = Residuals {
             v: [
@@ -265,7 +257,7 @@ impl World {
         };
         match kind {
             MachineKind::Winder => {
-                if let Some(a) = roller {
+                if let Some(a) = self.roller {
                     if rows >= 1 {
                         r.push(s * a.dot(band));
                     }
@@ -275,13 +267,13 @@ impl World {
                 }
             }
             MachineKind::Placement => {
-                let n = press.unwrap_or_else(Vector3::z);
+                let n = self.press.unwrap_or_else(Vector3::z);
                 r.push(s * n.dot(band));
-                r.push(s * n.dot(side));
+                r.push(s * n.dot(&self.side));
                 // Zero where the head presses along `-m`, 2 where along `+m`
                 // (which the two rows above allow too).
                 r.push(s * (1.0 + n.dot(normal)));
-                if let Some(a) = roller {
+                if let Some(a) = self.roller {
                     r.push(s * a.dot(band));
                 }
             }

@@ -14,7 +14,6 @@ use crate::machine::{Axis, Joint, JointKind};
 pub(super) type Written = (&'static str, Option<f64>);
 
 /// A joint's numbers in its unit (degrees or mm), each with its field's name.
-#[derive(Clone, Copy)]
 pub(super) struct Fields<'a> {
     /// Lower limit.
     pub(super) min: Written,
@@ -85,37 +84,29 @@ impl<'a> Fields<'a> {
     /// The fields of `l` in the unit of its joint `kind`; none given in the
     /// other unit (a fixed joint: none at all).
     fn of(l: &LinkSpec, kind: JointKind, place: &'a str) -> Result<Self, MachineError> {
-        let deg = Self {
-            min: ("min_deg", l.min_deg),
-            max: ("max_deg", l.max_deg),
-            v_max: ("v_max_deg_min", l.v_max_deg_min),
-            dv_max: ("dv_max_deg_min", l.dv_max_deg_min),
-            value: ("value_deg", l.value_deg),
-            home: ("home_deg", l.home_deg),
-            a_max: ("a_max_deg_s2", l.a_max_deg_s2),
-            scale: 1.0,
-            place,
-        };
-        let mm = Self {
-            min: ("min_mm", l.min_mm),
-            max: ("max_mm", l.max_mm),
-            v_max: ("v_max_mm_min", l.v_max_mm_min),
-            dv_max: ("dv_max_mm_min", l.dv_max_mm_min),
-            value: ("value_mm", l.value_mm),
-            home: ("home_mm", l.home_mm),
-            a_max: ("a_max_mm_s2", l.a_max_mm_s2),
-            scale: 1.0,
-            place,
-        };
-        let (wrong, own, why): (Vec<_>, Self, &str) = match kind {
-            JointKind::Revolute => (
-                mm.all().to_vec(),
-                deg,
-                "a revolute joint takes degrees (*_deg)",
-            ),
-            JointKind::Prismatic => (deg.all().to_vec(), mm, "a prismatic joint takes mm (*_mm)"),
+        let deg = [
+            ("min_deg", l.min_deg),
+            ("max_deg", l.max_deg),
+            ("v_max_deg_min", l.v_max_deg_min),
+            ("dv_max_deg_min", l.dv_max_deg_min),
+            ("value_deg", l.value_deg),
+            ("home_deg", l.home_deg),
+            ("a_max_deg_s2", l.a_max_deg_s2),
+        ];
+        let mm = [
+            ("min_mm", l.min_mm),
+            ("max_mm", l.max_mm),
+            ("v_max_mm_min", l.v_max_mm_min),
+            ("dv_max_mm_min", l.dv_max_mm_min),
+            ("value_mm", l.value_mm),
+            ("home_mm", l.home_mm),
+            ("a_max_mm_s2", l.a_max_mm_s2),
+        ];
+        let (wrong, own, why): (Vec<_>, [Written; 7], &str) = match kind {
+            JointKind::Revolute => (mm.to_vec(), deg, "a revolute joint takes degrees (*_deg)"),
+            JointKind::Prismatic => (deg.to_vec(), mm, "a prismatic joint takes mm (*_mm)"),
             JointKind::Fixed => (
-                [deg.all(), mm.all()].concat(),
+                [deg, mm].concat(),
                 deg,
                 "a fixed joint has no limits or value",
             ),
@@ -129,20 +120,18 @@ impl<'a> Fields<'a> {
         } else {
             1.0
         };
-        Ok(Self { scale, ..own })
-    }
-
-    /// Every field, in the order of the messages.
-    fn all(&self) -> [Written; 7] {
-        [
-            self.min,
-            self.max,
-            self.v_max,
-            self.dv_max,
-            self.value,
-            self.home,
-            self.a_max,
-        ]
+        let [min, max, v_max, dv_max, value, home, a_max] = own;
+        Ok(Self {
+            min,
+            max,
+            v_max,
+            dv_max,
+            value,
+            home,
+            a_max,
+            scale,
+            place,
+        })
     }
 
     /// The field's value in rad or mm, when given; finite.

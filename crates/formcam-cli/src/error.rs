@@ -4,7 +4,6 @@
 use std::io;
 use std::path::PathBuf;
 
-use formcam_machine::{AxesCsvError, MachineError};
 use formcam_run::RunError;
 
 /// Why a command failed.
@@ -29,39 +28,6 @@ pub enum CliError {
         path: PathBuf,
         /// The reason.
         source: io::Error,
-    },
-    /// A machine file could not be read.
-    #[error("{}: cannot read the machine file: {source}", path.display())]
-    ReadMachine {
-        /// The machine file.
-        path: PathBuf,
-        /// The reason.
-        source: io::Error,
-    },
-    /// An axes file could not be read.
-    #[error("{}: cannot read the axes file: {source}", path.display())]
-    ReadAxes {
-        /// The axes file.
-        path: PathBuf,
-        /// The reason.
-        source: io::Error,
-    },
-    /// A machine file that is no valid machine.
-    #[error("{}{}{source}", path.display(), if matches!(source, MachineError::Syntax { .. }) { ":" } else { ": " })]
-    Machine {
-        /// The machine file.
-        path: PathBuf,
-        /// What is wrong, naming the link or point and the field.
-        source: MachineError,
-    },
-    /// An axes file that cannot be read: no header, a missing column, a
-    /// cell that is no finite number.
-    #[error("{}{}{source}", path.display(), if source.line().is_some() { ":" } else { ": " })]
-    Axes {
-        /// The axes file.
-        path: PathBuf,
-        /// What is wrong, naming the line and the column.
-        source: AxesCsvError,
     },
     /// The outputs could not be written (an input in the way, a folder
     /// formcam did not write, another run writing there, the file system).

@@ -24,6 +24,7 @@
 //! # feed_change_max = 25.0  # mm/min between neighbouring points
 //! ```
 
+use formcam_files::line_col;
 use formcam_schema::{
     Condition, Default as Given, JobSchema, Kind, Range, Repeat, SchemaError, Table, Unit, Value,
     field, validate,
@@ -421,13 +422,6 @@ pub const DRESS_JOB: JobSchema = JobSchema {
            step and the feeds",
     tables: &[WHEEL, DRESSER, PROCESS],
 };
-
-fn line_col(text: &str, offset: usize) -> (usize, usize) {
-    let before = &text[..offset.min(text.len())];
-    let line = before.matches('\n').count() + 1;
-    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (line, col)
-}
 
 #[cfg(test)]
 mod tests {

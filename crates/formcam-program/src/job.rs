@@ -3,6 +3,7 @@
 //! with errors that name the field. [`WINDING_JOB`] describes every table
 //! and field; the reader validates a job against it before reading it.
 
+use formcam_files::line_col;
 use std::path::{Path, PathBuf};
 
 use formcam_machine::IkMethod;
@@ -396,14 +397,6 @@ fn read_post(table: PostTable, base_dir: &Path) -> Result<Post, ProgramError> {
             .map(Post::Dialect)
             .map_err(ProgramError::Dialect),
     }
-}
-
-/// Line and column (1-based) of a byte offset.
-fn line_col(text: &str, offset: usize) -> (usize, usize) {
-    let before = &text[..offset.min(text.len())];
-    let line = before.matches('\n').count() + 1;
-    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (line, col)
 }
 
 /// The names `[post] dialect` takes (the dialects and their aliases).

@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use formcam_correct::CorrectError;
+use formcam_machine::{AxesCsvError, MachineError};
 use formcam_program::ProgramError;
 use formcam_progress::Cancelled;
 
@@ -90,6 +91,39 @@ pub enum RunError {
     /// could not be read or planned, naming the file.
     #[error(transparent)]
     JobFile(#[from] formcam_program::JobFileError),
+    /// A machine file could not be read.
+    #[error("{}: cannot read the machine file: {source}", path.display())]
+    ReadMachine {
+        /// The machine file.
+        path: PathBuf,
+        /// The reason.
+        source: std::io::Error,
+    },
+    /// An axes file could not be read.
+    #[error("{}: cannot read the axes file: {source}", path.display())]
+    ReadAxes {
+        /// The axes file.
+        path: PathBuf,
+        /// The reason.
+        source: std::io::Error,
+    },
+    /// A machine file that is no valid machine.
+    #[error("{}{}{source}", path.display(), if matches!(source, MachineError::Syntax { .. }) { ":" } else { ": " })]
+    Machine {
+        /// The machine file.
+        path: PathBuf,
+        /// What is wrong, naming the link or point and the field.
+        source: MachineError,
+    },
+    /// An axes file that cannot be read: no header, a missing column, a
+    /// cell that is no finite number.
+    #[error("{}{}{source}", path.display(), if source.line().is_some() { ":" } else { ": " })]
+    Axes {
+        /// The axes file.
+        path: PathBuf,
+        /// What is wrong, naming the line and the column.
+        source: AxesCsvError,
+    },
     /// `summary.json` could not be written.
     #[error("summary.json: {source}")]
     Summary {

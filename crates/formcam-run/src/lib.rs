@@ -16,6 +16,7 @@ mod dress;
 mod error;
 mod files;
 mod job;
+mod machine;
 mod wind;
 
 pub use check::check;
@@ -31,6 +32,7 @@ pub use job::{
     JobKind, demo, demo_folder, dressing_for, run_job_file, run_job_file_with, run_job_text,
     run_job_text_with,
 };
+pub use machine::{MachineFk, machine_fk, machine_show, read_machine};
 pub use wind::{
     ProgramCheck, wind, wind_checked_with, wind_file, wind_file_checked_with, wind_file_with,
     wind_furthest, wind_furthest_text_with, wind_furthest_with, wind_with,

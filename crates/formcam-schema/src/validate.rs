@@ -3,6 +3,7 @@
 //! range, word not in the list or missing field, by `table.field` and
 //! `line:column`.
 
+pub(crate) use formcam_files::line_col;
 use std::ops::Range as Span;
 
 use toml_edit::{ImDocument, Item, Key, Value as Toml};
@@ -543,12 +544,4 @@ fn an(kind: Kind) -> &'static str {
         Kind::Integer => "an integer",
         _ => "a number",
     }
-}
-
-/// Line and column (1-based) of a byte offset.
-pub(crate) fn line_col(text: &str, offset: usize) -> (usize, usize) {
-    let before = text.get(..offset.min(text.len())).unwrap_or(text);
-    let line = before.matches('\n').count() + 1;
-    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (line, col)
 }

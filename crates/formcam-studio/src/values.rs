@@ -11,6 +11,7 @@
 //! added or removed and `[[layer]]` entries added or removed at the end by
 //! the list's length.
 
+pub(crate) use formcam_files::line_col;
 use formcam_schema::{Field, JobSchema, Kind, Repeat, Table};
 use serde_json::{Map, Number, Value as Json};
 use toml_edit::{
@@ -82,14 +83,6 @@ fn values_error(field: &str, problem: ValuesProblem) -> StudioError {
         field: field.to_string(),
         problem,
     }
-}
-
-/// Line and column (1-based) of a byte offset.
-pub(crate) fn line_col(text: &str, offset: usize) -> (usize, usize) {
-    let before = text.get(..offset.min(text.len())).unwrap_or(text);
-    let line = before.matches('\n').count() + 1;
-    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (line, col)
 }
 
 // ---------------------------------------------------------------- reading

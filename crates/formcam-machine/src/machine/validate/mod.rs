@@ -4,6 +4,7 @@
 use super::Machine;
 use crate::MachineError;
 use crate::file::MachineFile;
+pub(crate) use formcam_files::line_col;
 
 mod axis;
 mod joint;
@@ -60,11 +61,4 @@ impl Machine {
             collision,
         })
     }
-}
-
-pub(crate) fn line_col(text: &str, offset: usize) -> (usize, usize) {
-    let before = &text[..offset.min(text.len())];
-    let line = before.matches('\n').count() + 1;
-    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (line, col)
 }

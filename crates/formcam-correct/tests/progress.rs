@@ -4,14 +4,14 @@
 //! `CorrectError::Cancelled` when the hook asks to stop.
 
 use std::path::Path;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex};
+use std::sync::Mutex;
 
 use formcam_correct::{
     CorrectError, Corrector, Measurements, MillingProgram, ScenarioJob, Settings,
     correct_program_with,
 };
-use formcam_progress::{Hook, Phase, Step};
+use formcam_progress::{Phase, Step};
+use formcam_testkit::Recorder;
 
 fn measurements() -> Measurements {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/correct/cmm.csv");
@@ -31,30 +31,18 @@ fn table(nx: usize, ny: usize) -> MillingProgram {
     MillingProgram::read(&text, "csv", &Settings::default()).unwrap()
 }
 
-/// The reports a hook has seen.
-type Seen = Arc<Mutex<Vec<Step>>>;
-
 /// A hook recording every report and cancelling at the first one `stop`
 /// picks.
-fn hook(stop: impl Fn(&Step) -> bool + Sync) -> (Seen, Hook<impl Fn(Step) + Sync>) {
-    let seen = Arc::new(Mutex::new(Vec::new()));
-    let flag = Arc::new(AtomicBool::new(false));
-    let (s, f) = (Arc::clone(&seen), Arc::clone(&flag));
-    let h = Hook::with_flag(flag, move |step| {
-        s.lock().unwrap().push(step);
-        if stop(&step) {
-            f.store(true, Ordering::Relaxed);
-        }
-    });
-    (seen, h)
+fn hook(stop: impl Fn(&Step) -> bool + Sync) -> Recorder<impl Fn(&Step) -> bool + Sync> {
+    Recorder::new(stop)
 }
 
 #[test]
 fn nodes_are_reported_chunk_by_chunk_with_the_same_corrections() {
     let program = table(300, 250);
-    let (seen, h) = hook(|_| false);
+    let h = hook(|_| false);
     let c = correct_program_with(&measurements(), &program, &Settings::default(), &h).unwrap();
-    let seen = seen.lock().unwrap().clone();
+    let seen = h.steps();
     let of = |p: Phase| -> Vec<(u64, u64)> {
         seen.iter()
             .filter(|s| s.phase == p)
@@ -80,7 +68,7 @@ fn a_hook_that_cancels_stops_the_correction() {
     let program = table(300, 250);
     for (at, phase) in [(0usize, Phase::Grid), (1, Phase::Nodes)] {
         let count = Mutex::new(0usize);
-        let (seen, h) = hook(move |s| {
+        let h = hook(move |s| {
             let mut c = count.lock().unwrap();
             let stop = s.phase == phase && *c == at;
             if s.phase == phase {
@@ -93,7 +81,7 @@ fn a_hook_that_cancels_stops_the_correction() {
         assert_eq!(e, CorrectError::Cancelled(formcam_progress::Cancelled));
         assert_eq!(e.to_string(), "cancelled");
         // Nothing after the report that cancelled.
-        let last = *seen.lock().unwrap().last().unwrap();
+        let last = *h.steps().last().unwrap();
         assert_eq!(last.phase, phase);
     }
 }
@@ -130,16 +118,15 @@ section_study = [3, 5]
 #[test]
 fn the_closed_loop_reports_its_rounds_and_stops_when_asked() {
     let job = ScenarioJob::from_toml(LOOP).unwrap();
-    let (seen, h) = hook(|_| false);
+    let h = hook(|_| false);
     let plain = job.scenario.run().unwrap();
     let hooked = job.scenario.run_with(&h).unwrap();
     assert_eq!(plain.rounds.len(), hooked.rounds.len());
     for (a, b) in plain.rounds.iter().zip(&hooked.rounds) {
         assert_eq!(a.program, b.program);
     }
-    let rounds: Vec<(Phase, u64, u64)> = seen
-        .lock()
-        .unwrap()
+    let rounds: Vec<(Phase, u64, u64)> = h
+        .steps()
         .iter()
         .map(|s| (s.phase, s.done, s.total))
         .collect();
@@ -149,7 +136,7 @@ fn the_closed_loop_reports_its_rounds_and_stops_when_asked() {
         (0..=3).map(|k| (Phase::Round, k, 3)).collect::<Vec<_>>()
     );
     for at in 0..3 {
-        let (_, h) = hook(move |s| s.done == at);
+        let h = hook(move |s| s.done == at);
         let e = job.scenario.run_with(&h).unwrap_err();
         assert!(matches!(e, CorrectError::Cancelled(_)), "round {at}: {e}");
     }
@@ -158,7 +145,7 @@ fn the_closed_loop_reports_its_rounds_and_stops_when_asked() {
 #[test]
 fn the_spacing_study_reports_each_correction() {
     let job = ScenarioJob::from_toml(LOOP).unwrap();
-    let (seen, h) = hook(|_| false);
+    let h = hook(|_| false);
     let rows = job
         .scenario
         .spacing_study_with(&job.section_study, &h)
@@ -167,9 +154,9 @@ fn the_spacing_study_reports_each_correction() {
         rows,
         job.scenario.spacing_study(&job.section_study).unwrap()
     );
-    let done: Vec<u64> = seen.lock().unwrap().iter().map(|s| s.done).collect();
+    let done: Vec<u64> = h.steps().iter().map(|s| s.done).collect();
     assert_eq!(done, [0, 1, 2, 3, 4]);
-    let (_, h) = hook(|s| s.done == 1);
+    let h = hook(|s| s.done == 1);
     let e = job
         .scenario
         .spacing_study_with(&job.section_study, &h)

@@ -4,11 +4,9 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
 
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex};
-
 use formcam_dress::{DressError, DressJob, DressSpec, dress, dress_with};
-use formcam_progress::{Hook, Phase, Step};
+use formcam_progress::{Phase, Step};
+use formcam_testkit::Recorder;
 
 const EXAMPLE: &str = include_str!("../../../examples/dress-ballscrew-nut.toml");
 
@@ -19,30 +17,19 @@ fn spec() -> DressSpec {
     j.spec(None).unwrap()
 }
 
-/// The reports a hook has seen.
-type Seen = Arc<Mutex<Vec<Step>>>;
-
-/// A hook recording every report, cancelling at the first one `stop` picks.
-fn hook(stop: impl Fn(&Step) -> bool + Sync) -> (Seen, Hook<impl Fn(Step) + Sync>) {
-    let seen = Arc::new(Mutex::new(Vec::new()));
-    let flag = Arc::new(AtomicBool::new(false));
-    let (s, f) = (Arc::clone(&seen), Arc::clone(&flag));
-    let h = Hook::with_flag(flag, move |step| {
-        s.lock().unwrap().push(step);
-        if stop(&step) {
-            f.store(true, Ordering::Relaxed);
-        }
-    });
-    (seen, h)
+/// A hook recording every report and cancelling at the first one `stop`
+/// picks.
+fn hook(stop: impl Fn(&Step) -> bool + Sync) -> Recorder<impl Fn(&Step) -> bool + Sync> {
+    Recorder::new(stop)
 }
 
 #[test]
 fn forming_is_reported_in_chunks_of_steps_up_to_its_total() {
     let spec = spec();
-    let (seen, h) = hook(|_| false);
+    let h = hook(|_| false);
     let d = dress_with(&spec, &h).unwrap();
     assert!(d == dress(&spec).unwrap(), "the hook changes nothing");
-    let seen = seen.lock().unwrap().clone();
+    let seen = h.steps();
     let total = d.forming.steps.len() as u64;
     assert!(total > 4096, "{total} steps: the example reports in chunks");
     assert!(
@@ -59,12 +46,12 @@ fn forming_is_reported_in_chunks_of_steps_up_to_its_total() {
 fn a_hook_that_cancels_stops_the_dressing() {
     let spec = spec();
     for at in [0, 4096] {
-        let (seen, h) = hook(move |s| s.done == at);
+        let h = hook(move |s| s.done == at);
         let Err(e) = dress_with(&spec, &h) else {
             panic!("a cancelled dressing returns no dressing");
         };
         assert_eq!(e, DressError::Cancelled(formcam_progress::Cancelled));
         assert_eq!(e.to_string(), "cancelled");
-        assert_eq!(seen.lock().unwrap().last().map(|s| s.done), Some(at));
+        assert_eq!(h.steps().last().map(|s| s.done), Some(at));
     }
 }

@@ -5,7 +5,6 @@
 #![allow(clippy::expect_used, missing_docs)]
 
 use std::hint::black_box;
-use std::path::PathBuf;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use formcam_geom::{DomeShape, Vessel};
@@ -16,10 +15,7 @@ use formcam_winding::eye::{EyeMode, EyeSpec, eye_trajectory};
 use formcam_winding::{Ends, LayerSpec, Slippage, plan_layer};
 
 fn machine(name: &str) -> Machine {
-    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../machines")
-        .join(name);
-    Machine::from_toml(&std::fs::read_to_string(p).expect("read")).expect("machine")
+    Machine::from_toml(&formcam_testkit::machine_text(name)).expect("machine")
 }
 
 fn benches(c: &mut Criterion) {

@@ -11,11 +11,8 @@ use formcam_winding::eye::{EyeMode, EyeSpec, eye_trajectory};
 use formcam_winding::{Circuit, Ends, LayerSpec, Slippage, plan_layer};
 
 fn machine(name: &str) -> Machine {
-    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../machines")
-        .join(name);
-    Machine::from_toml(&std::fs::read_to_string(&p).unwrap())
-        .unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+    Machine::from_toml(&formcam_testkit::machine_text(name))
+        .unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
 fn vessel() -> Vessel {

@@ -7,8 +7,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::io::{Read, Write};
-use std::net::{SocketAddr, TcpStream};
+use std::net::SocketAddr;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -60,46 +59,18 @@ fn start(dir: &Path) -> SocketAddr {
 
 /// Sends `request` as it is; the status and the body.
 fn raw(addr: SocketAddr, request: &[u8]) -> (u16, Vec<u8>) {
-    let mut s = TcpStream::connect(addr).unwrap();
-    s.set_read_timeout(Some(Duration::from_secs(120))).unwrap();
-    s.write_all(request).unwrap();
-    let mut out = Vec::new();
-    let _ = s.read_to_end(&mut out);
-    let text = String::from_utf8_lossy(&out);
-    let status = text
-        .split_whitespace()
-        .nth(1)
-        .and_then(|c| c.parse().ok())
-        .unwrap_or(0);
-    let body = match out.windows(4).position(|w| w == b"\r\n\r\n") {
-        Some(i) => out[i + 4..].to_vec(),
-        None => Vec::new(),
-    };
-    (status, body)
+    let a = formcam_testkit::send(addr, request, Duration::from_secs(120));
+    (a.status, a.body)
 }
 
 fn get(addr: SocketAddr, url: &str) -> (u16, Value) {
-    let (status, body) = raw(
-        addr,
-        format!("GET {url} HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n").as_bytes(),
-    );
-    (status, serde_json::from_slice(&body).unwrap_or(Value::Null))
+    let a = formcam_testkit::get(addr, url);
+    (a.status, a.json())
 }
 
 fn post(addr: SocketAddr, url: &str, body: &Value) -> (u16, Value) {
-    let body = body.to_string();
-    let (status, answer) = raw(
-        addr,
-        format!(
-            "POST {url} HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
-            body.len()
-        )
-        .as_bytes(),
-    );
-    (
-        status,
-        serde_json::from_slice(&answer).unwrap_or(Value::Null),
-    )
+    let a = formcam_testkit::post_json(addr, url, &body.to_string());
+    (a.status, a.json())
 }
 
 /// The job `file` as the page loads it, ready to post back.

@@ -7,8 +7,6 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::io::{Read, Write};
-use std::net::TcpStream;
 use std::path::{Path, PathBuf};
 
 use formcam_machine::read_mesh;
@@ -125,17 +123,8 @@ fn start(dir: &Path) -> std::net::SocketAddr {
 
 /// A GET: status and body.
 fn get(addr: std::net::SocketAddr, url: &str) -> (u16, Vec<u8>) {
-    let mut s = TcpStream::connect(addr).unwrap();
-    s.write_all(
-        format!("GET {url} HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n").as_bytes(),
-    )
-    .unwrap();
-    let mut out = Vec::new();
-    let _ = s.read_to_end(&mut out);
-    let i = out.windows(4).position(|w| w == b"\r\n\r\n").unwrap();
-    let head = String::from_utf8_lossy(&out[..i]).into_owned();
-    let status = head.split_whitespace().nth(1).unwrap().parse().unwrap();
-    (status, out[i + 4..].to_vec())
+    let a = formcam_testkit::get(addr, url);
+    (a.status, a.body)
 }
 
 fn get_json(addr: std::net::SocketAddr, url: &str) -> Value {

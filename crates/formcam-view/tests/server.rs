@@ -103,44 +103,19 @@ impl Probe {
 
 /// Sends `request` as it is and returns the status and the body.
 fn raw(server: &Probe, request: &[u8]) -> (u16, Vec<u8>) {
-    let mut s = TcpStream::connect(server.addr).unwrap();
-    s.set_read_timeout(Some(Duration::from_secs(10))).unwrap();
-    s.write_all(request).unwrap();
-    let mut out = Vec::new();
-    let _ = s.read_to_end(&mut out);
-    let text = String::from_utf8_lossy(&out);
-    let status = text
-        .split_whitespace()
-        .nth(1)
-        .and_then(|c| c.parse().ok())
-        .unwrap_or(0);
-    let body = match out.windows(4).position(|w| w == b"\r\n\r\n") {
-        Some(i) => out[i + 4..].to_vec(),
-        None => Vec::new(),
-    };
-    (status, body)
+    let a = formcam_testkit::send(server.addr, request, Duration::from_secs(10));
+    (a.status, a.body)
 }
 
 /// A GET with its response's head.
 fn get_with_head(server: &Probe, url: &str) -> (u16, String, Vec<u8>) {
-    let mut s = TcpStream::connect(server.addr).unwrap();
-    s.write_all(
-        format!("GET {url} HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n").as_bytes(),
-    )
-    .unwrap();
-    let mut out = Vec::new();
-    let _ = s.read_to_end(&mut out);
-    let i = out.windows(4).position(|w| w == b"\r\n\r\n").unwrap();
-    let head = String::from_utf8_lossy(&out[..i]).into_owned();
-    let status = head.split_whitespace().nth(1).unwrap().parse().unwrap();
-    (status, head, out[i + 4..].to_vec())
+    let a = formcam_testkit::get(server.addr, url);
+    (a.status, a.head, a.body)
 }
 
 fn get(server: &Probe, url: &str) -> (u16, Vec<u8>) {
-    raw(
-        server,
-        format!("GET {url} HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n").as_bytes(),
-    )
+    let a = formcam_testkit::get(server.addr, url);
+    (a.status, a.body)
 }
 
 fn get_json(server: &Probe, url: &str) -> Value {

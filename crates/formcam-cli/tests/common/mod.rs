@@ -4,8 +4,7 @@
 
 #![allow(dead_code, clippy::unwrap_used, clippy::expect_used)]
 
-use std::io::{BufRead, BufReader, Read, Write};
-use std::net::TcpStream;
+use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 
@@ -189,17 +188,11 @@ pub fn serving(args: &[&str]) -> Running {
 /// A GET of `path` on the server at `url`: status line and body.
 pub fn get(url: &str, path: &str) -> (String, Vec<u8>) {
     let addr = url.trim_start_matches("http://").trim_end_matches('/');
-    let mut c = TcpStream::connect(addr).unwrap();
-    c.write_all(
-        format!("GET {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n").as_bytes(),
-    )
-    .unwrap();
-    let mut out = Vec::new();
-    c.read_to_end(&mut out).unwrap();
-    let i = out.windows(4).position(|w| w == b"\r\n\r\n").unwrap();
-    let head = String::from_utf8_lossy(&out[..i]).into_owned();
-    (
-        head.lines().next().unwrap_or("").to_string(),
-        out[i + 4..].to_vec(),
-    )
+    let request = format!("GET {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n");
+    let a = formcam_testkit::send(
+        addr.parse().unwrap(),
+        request.as_bytes(),
+        std::time::Duration::from_secs(120),
+    );
+    (a.status_line().to_string(), a.body)
 }

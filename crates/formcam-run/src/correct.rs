@@ -11,10 +11,14 @@ use std::path::{Path, PathBuf};
 use formcam_correct::simulate::LoopResult;
 use formcam_correct::{
     CorrectError, Correction, CorrectionJob, Given, Grid, JobField, Measurements, MillingProgram,
-    NODE_STATUS_FILE, PREDICTED_FILE, Rule, ScenarioError, ScenarioJob, correct_program_with,
+    Rule, ScenarioError, ScenarioJob, correct_program_with,
 };
 use formcam_plot::{convergence_svg, deviations_svg, displacement_svg};
 use formcam_progress::{Phase, Progress, Silent, Step};
+use formcam_results::correction::{NODE_STATUS, PREDICTED, ROUND_CMM};
+use formcam_results::names::{
+    self, CONVERGENCE_SVG, DEVIATIONS_AFTER_SVG, DEVIATIONS_BEFORE_SVG, REPORT,
+};
 use serde_json::{Value, json};
 
 use crate::{ResultFile, RunError, RunOutput};
@@ -210,10 +214,10 @@ pub fn correct_job_with(
         progress,
     )?;
     run.files
-        .push(ResultFile::new(NODE_STATUS_FILE, c.applied.status_csv()));
+        .push(ResultFile::new(NODE_STATUS.file, c.applied.status_csv()));
     run.files
-        .push(ResultFile::new(PREDICTED_FILE, c.predicted.to_csv()));
-    run.files.push(ResultFile::new("report.json", report));
+        .push(ResultFile::new(PREDICTED.file, c.predicted.to_csv()));
+    run.files.push(ResultFile::new(REPORT, report));
     run.inputs.insert(0, path.to_path_buf());
     Ok(run)
 }
@@ -455,12 +459,9 @@ pub fn correct_simulate_with(
     let mut files = Vec::new();
     let mut rounds = Vec::new();
     for (k, r) in result.rounds.iter().enumerate() {
+        files.push(ResultFile::new(names::round_program(k), r.program.clone()));
         files.push(ResultFile::new(
-            format!("program-{k}.nc"),
-            r.program.clone(),
-        ));
-        files.push(ResultFile::new(
-            format!("cmm-{k}.csv"),
+            names::round_cmm(k),
             cmm_csv(&r.measurements),
         ));
         rounds.push(json!({
@@ -473,17 +474,14 @@ pub fn correct_simulate_with(
     }
     let grid_of = |m: &Measurements| Grid::from_measurements(m, None).map_err(at);
     files.push(ResultFile::new(
-        "deviations-before.svg",
+        DEVIATIONS_BEFORE_SVG,
         deviations_svg(&first.measurements, &grid_of(&first.measurements)?)?,
     ));
     files.push(ResultFile::new(
-        "deviations-after.svg",
+        DEVIATIONS_AFTER_SVG,
         deviations_svg(&last.measurements, &grid_of(&last.measurements)?)?,
     ));
-    files.push(ResultFile::new(
-        "convergence.svg",
-        convergence_svg(&result)?,
-    ));
+    files.push(ResultFile::new(CONVERGENCE_SVG, convergence_svg(&result)?));
     let study: Vec<Value> = rows
         .iter()
         .map(|r| {
@@ -511,7 +509,7 @@ pub fn correct_simulate_with(
         "rms_deviation_after_mm": last.true_rms_mm,
         "section_study": study,
     });
-    files.push(ResultFile::new("report.json", pretty(&report)?));
+    files.push(ResultFile::new(REPORT, pretty(&report)?));
     progress.checkpoint(Step::new(Phase::Files, 1, 1))?;
     Ok(RunOutput {
         files,
@@ -542,7 +540,7 @@ fn loop_line(out_dir: &Path, result: &LoopResult) -> String {
 
 /// The measurements as the CMM CSV report (with normals).
 fn cmm_csv(m: &Measurements) -> String {
-    let mut out = String::from("section,point,x_nom,y_nom,z_nom,x_act,y_act,z_act,nx,ny,nz\n");
+    let mut out = ROUND_CMM.header_with(&[], true);
     for s in &m.sections {
         for p in &s.points {
             let n = p.normal.unwrap_or([0.0, 0.0, 1.0]);

@@ -12,6 +12,10 @@ use std::time::Instant;
 use formcam_dress::{Contour, DressError, DressJob, Dressing, Point, dress_with as run_dressing};
 use formcam_nc::Dialect;
 use formcam_progress::{Phase, Progress, Silent, Step};
+use formcam_results::dressing::{
+    CONTOUR_FINAL, CONTOUR_INITIAL, CONTOUR_PASSES, DRESSER, MRR, PROFILE,
+};
+use formcam_results::names::{MRR_SVG, PROFILE_SVG, SUMMARY};
 use serde_json::json;
 
 use crate::{ResultFile, RunError, RunOutput};
@@ -85,19 +89,19 @@ pub fn dress_text_with(
         obj.insert("warnings".into(), json!(warnings));
     }
     let summary = serde_json::to_vec_pretty(&summary)
-        .map_err(|e| dress_error(Path::new("summary.json"), "", e.to_string()))?;
+        .map_err(|e| dress_error(Path::new(SUMMARY), "", e.to_string()))?;
     let files = vec![
-        ResultFile::new("profile.csv", profile_csv(&d)),
-        ResultFile::new("dresser.csv", dresser_csv(&d)),
-        ResultFile::new("mrr.csv", mrr_csv(&d)),
-        ResultFile::new("contour_initial.csv", contour_csv(&d.forming.initial)),
-        ResultFile::new("contour_final.csv", contour_csv(d.forming.final_contour())),
-        ResultFile::new("contour_passes.csv", contour_passes_csv(&d)),
+        ResultFile::new(PROFILE.file, profile_csv(&d)),
+        ResultFile::new(DRESSER.file, dresser_csv(&d)),
+        ResultFile::new(MRR.file, mrr_csv(&d)),
+        ResultFile::new(CONTOUR_INITIAL.file, contour_csv(&d.forming.initial)),
+        ResultFile::new(CONTOUR_FINAL.file, contour_csv(d.forming.final_contour())),
+        ResultFile::new(CONTOUR_PASSES.file, contour_passes_csv(&d)),
         ResultFile::new("program.cls", cls),
         ResultFile::new("program.mpf", mpf),
-        ResultFile::new("profile.svg", formcam_plot::profile_svg(&name, &d)?),
-        ResultFile::new("mrr.svg", formcam_plot::mrr_svg(&name, &d)?),
-        ResultFile::new("summary.json", summary),
+        ResultFile::new(PROFILE_SVG, formcam_plot::profile_svg(&name, &d)?),
+        ResultFile::new(MRR_SVG, formcam_plot::mrr_svg(&name, &d)?),
+        ResultFile::new(SUMMARY, summary),
     ];
     let ratio = |r: Option<f64>| r.map_or("-".to_string(), |r| format!("{r:.2}"));
     let line = format!(
@@ -175,7 +179,7 @@ fn read_initial(path: &Path) -> Result<Vec<Point>, RunError> {
 /// Points as `z,x` rows (the profile's `x` along the axis is the program's
 /// `z`, its radial `y` the program's `x`).
 fn zx_csv(points: &[Point]) -> Vec<u8> {
-    let mut s = String::from("z,x\n");
+    let mut s = PROFILE.header();
     for p in points {
         let _ = writeln!(s, "{:.9},{:.9}", p.x, p.y);
     }
@@ -192,7 +196,7 @@ fn contour_csv(c: &Contour) -> Vec<u8> {
 
 /// The contour after each pass, pass after pass: `z,x,pass` (1-based).
 fn contour_passes_csv(d: &Dressing) -> Vec<u8> {
-    let mut s = String::from("z,x,pass\n");
+    let mut s = CONTOUR_PASSES.header();
     for (i, c) in d.forming.after_pass.iter().enumerate() {
         for p in c.points() {
             let _ = writeln!(s, "{:.9},{:.9},{}", p.x, p.y, i + 1);
@@ -202,7 +206,7 @@ fn contour_passes_csv(d: &Dressing) -> Vec<u8> {
 }
 
 fn dresser_csv(d: &Dressing) -> Vec<u8> {
-    let mut s = String::from("z,x,pass,stage,corner_z,corner_x\n");
+    let mut s = DRESSER.header();
     for (i, pass) in d.passes.iter().enumerate() {
         for p in &pass.points {
             let _ = writeln!(
@@ -222,14 +226,7 @@ fn dresser_csv(d: &Dressing) -> Vec<u8> {
 
 fn mrr_csv(d: &Dressing) -> Vec<u8> {
     let vol = d.volume_factor();
-    let mut s = String::from(
-        "z,x,area,mrr,feed,pass,stage,length,area_per_mm,feed_required,mrr_uncontrolled,\
-         cut_angle,cut_analogue,steady",
-    );
-    if vol.is_some() {
-        s.push_str(",mrr_volume,mrr_volume_uncontrolled");
-    }
-    s.push('\n');
+    let mut s = MRR.header_with(&[], vol.is_some());
     let f = &d.feed;
     for (k, st) in d.forming.steps.iter().enumerate() {
         let r = d.passes.get(st.pass).map_or(0.0, |p| p.radius);

@@ -23,6 +23,8 @@ use formcam_program::{
     Wound, WoundLayer, WoundProgram, nc, plan_each, plan_until_with, write_program,
 };
 use formcam_progress::{Phase, Progress, Silent, Step};
+use formcam_results::names::{self, CHECK, EYE_SVG, PATH_SVG, SUMMARY};
+use formcam_results::winding::{AXES, BAND, BLOCKS, EYE, PATH, PROGRAM_AXES};
 use formcam_winding::Layer;
 use formcam_winding::eye::EyeTrajectory;
 use serde_json::{Map, Value, json};
@@ -296,7 +298,7 @@ fn run(
     if let Some(c) = checked {
         output.line.push_str(&c.verdict());
         output.violations = Some(c.report.violations.len());
-        output.files.push(ResultFile::new("check.json", c.json()?));
+        output.files.push(ResultFile::new(CHECK, c.json()?));
     } else if check == ProgramCheck::On
         && program_written(&output)
         && matches!(wound.post, Post::Template { .. })
@@ -322,7 +324,7 @@ fn run(
 
 /// Whether a run's files hold a program.
 fn program_written(output: &RunOutput) -> bool {
-    output.files.iter().any(|f| f.name.starts_with("program."))
+    output.files.iter().any(|f| names::is_program(&f.name))
 }
 
 /// The check of a written program: its report and how long it took.
@@ -376,7 +378,7 @@ fn check_program(
         return Ok(None);
     };
     let t = Instant::now();
-    let program = out.join(format!("program.{}", wound.post.extension()));
+    let program = out.join(names::program(wound.post.extension()));
     let (machine, mesh_dir) = match &jm.source {
         MachineSource::Shipped(n) => (n.clone(), None),
         MachineSource::File(f) => {
@@ -436,27 +438,27 @@ fn single(
     }
     let title = format!("{name}: {} mandrel, one pass", l.mandrel.kind());
     let mut files = vec![
-        ResultFile::new("path.csv", path_csv(layer)),
+        ResultFile::new(PATH.file, path_csv(layer)),
         ResultFile::new(
-            "path.svg",
+            PATH_SVG,
             formcam_plot::layer_svg(&title, &l.mandrel, layer)?,
         ),
     ];
     let mut more = String::new();
     if let Some(t) = &l.eye {
         add_eye_summary(&mut summary, t);
-        files.push(ResultFile::new("eye.csv", eye_csv(t)));
+        files.push(ResultFile::new(EYE.file, eye_csv(t)));
         files.push(ResultFile::new(
-            "eye.svg",
+            EYE_SVG,
             formcam_plot::eye_svg(&format!("{name}: payout eye over one circuit"), t)?,
         ));
         more = eye_line(t);
     }
     if let (Some(m), Some(track), Some(jm)) = (&wound.machine, &l.track, &job.machine) {
-        files.push(ResultFile::new("axes.csv", axes_csv(m, l, track)));
+        files.push(ResultFile::new(AXES.file, axes_csv(m, l, track)));
         let passed = l.band_passed(m);
         if !m.roles.band_path.is_empty() {
-            files.push(ResultFile::new("band.csv", band_csv(m, l, &passed)));
+            files.push(ResultFile::new(BAND.file, band_csv(m, l, &passed)));
         }
         add_axes_summary(&mut summary, m, &jm.source, track, passed.last());
         let mut program_line = String::new();
@@ -471,7 +473,7 @@ fn single(
         more.push_str(&axes_line(m, track));
         more.push_str(&program_line);
     }
-    files.push(ResultFile::new("summary.json", pretty(&summary)?));
+    files.push(ResultFile::new(SUMMARY, pretty(&summary)?));
     let line = format!(
         "{}: {} path, mu {:.5}, alpha at equator {:.3} deg, {} circuits (pattern {} skip {}), dwell \
          {:.2} deg, fibre {:.1} m{more}",
@@ -521,27 +523,29 @@ impl LayerFiles {
             return Ok(());
         };
         let files = &mut self.files;
-        let dir = format!("layer-{:02}", i + 1);
         let title = format!("{}: {} mandrel, one pass", l.label, w.mandrel.kind());
         files.push(ResultFile::new(
-            format!("{dir}/path.csv"),
+            names::in_layer(i + 1, PATH.file),
             path_csv(&w.layer),
         ));
         files.push(ResultFile::new(
-            format!("{dir}/path.svg"),
+            names::in_layer(i + 1, PATH_SVG),
             formcam_plot::layer_svg(&title, &w.mandrel, &w.layer)?,
         ));
         if let Some(t) = &w.eye {
-            files.push(ResultFile::new(format!("{dir}/eye.csv"), eye_csv(t)));
             files.push(ResultFile::new(
-                format!("{dir}/eye.svg"),
+                names::in_layer(i + 1, EYE.file),
+                eye_csv(t),
+            ));
+            files.push(ResultFile::new(
+                names::in_layer(i + 1, EYE_SVG),
                 formcam_plot::eye_svg(&format!("{}: payout eye over one circuit", l.label), t)?,
             ));
         }
         let axes = match &w.track {
             Some(track) => {
                 files.push(ResultFile::new(
-                    format!("{dir}/axes.csv"),
+                    names::in_layer(i + 1, AXES.file),
                     axes_csv(m, w, track),
                 ));
                 (track.limits_ok(), track.max_residual_mm())
@@ -551,7 +555,7 @@ impl LayerFiles {
         if !m.roles.band_path.is_empty() {
             let passed = w.band_passed(m);
             files.push(ResultFile::new(
-                format!("{dir}/band.csv"),
+                names::in_layer(i + 1, BAND.file),
                 band_csv(m, w, &passed),
             ));
         }
@@ -621,11 +625,8 @@ fn layered(
     summary.extend(fields);
     files.extend(pf);
     let (axes, _) = program_axes(m, p);
-    files.push(ResultFile::new("axes.csv", axes));
-    files.push(ResultFile::new(
-        "summary.json",
-        pretty(&Value::Object(summary))?,
-    ));
+    files.push(ResultFile::new(PROGRAM_AXES.file, axes));
+    files.push(ResultFile::new(SUMMARY, pretty(&Value::Object(summary))?));
     let line = format!(
         "{}: {} on {}, fibre {:.1} m{program_line}",
         job.title,
@@ -666,7 +667,7 @@ fn program_files(
         "program_time_preliminary_s".into(),
         json!(p.time_preliminary_s),
     );
-    summary.insert("program_file".into(), json!(format!("program.{ext}")));
+    summary.insert("program_file".into(), json!(names::program(ext)));
     summary.insert("axis_ranges".into(), axis_ranges);
     summary.insert(
         "checks_accepted".into(),
@@ -686,8 +687,8 @@ fn program_files(
         p.layers, p.time_s, p.time_pairwise_s, p.time_global_s
     );
     let files = vec![
-        ResultFile::new(format!("program.{ext}"), text),
-        ResultFile::new("blocks.csv", blocks_csv(m, p)),
+        ResultFile::new(names::program(ext), text),
+        ResultFile::new(BLOCKS.file, blocks_csv(m, p)),
     ];
     (files, summary, line)
 }
@@ -715,7 +716,7 @@ fn json_name<T: serde::Serialize>(v: &T) -> String {
 
 fn path_csv(layer: &Layer) -> Vec<u8> {
     let mut s = String::with_capacity(layer.points.len() * 120);
-    s.push_str("s,z,r,v,alpha,c,mu,alpha_deg,thickness\n");
+    s.push_str(&PATH.header());
     for (p, t) in layer.points.iter().zip(&layer.thickness) {
         let _ = writeln!(
             s,
@@ -814,11 +815,7 @@ fn add_eye_summary(summary: &mut Value, t: &EyeTrajectory) {
 
 fn axes_csv(m: &Machine, w: &Wound, track: &AxisTrack) -> Vec<u8> {
     let mut s = String::with_capacity(w.targets.len() * 16 * (m.axes.len() + 1));
-    s.push('x');
-    for a in &m.axes {
-        let _ = write!(s, ",{}", a.name);
-    }
-    s.push('\n');
+    s.push_str(&AXES.header_with(&axis_names(m), false));
     for (t, q) in w.targets.iter().zip(track.rows()) {
         let _ = write!(s, "{}", t.x);
         for (a, v) in q.iter().enumerate() {
@@ -829,12 +826,19 @@ fn axes_csv(m: &Machine, w: &Wound, track: &AxisTrack) -> Vec<u8> {
     s.into_bytes()
 }
 
+/// The machine's axes' names in its order, for the headers.
+fn axis_names(m: &Machine) -> Vec<&str> {
+    m.axes.iter().map(|a| a.name.as_str()).collect()
+}
+
 fn band_csv(m: &Machine, w: &Wound, passed: &BandPassed) -> Vec<u8> {
-    let mut s = String::from("x");
-    for &k in &m.roles.band_path {
-        let _ = write!(s, ",{}", m.points[k].name);
-    }
-    s.push('\n');
+    let points: Vec<&str> = m
+        .roles
+        .band_path
+        .iter()
+        .map(|&k| m.points[k].name.as_str())
+        .collect();
+    let mut s = BAND.header_with(&points, false);
     for (t, row) in w.targets.iter().zip(passed.rows()) {
         let _ = write!(s, "{}", t.x);
         for v in row {
@@ -913,7 +917,7 @@ fn add_axes_summary(
 
 fn eye_csv(t: &EyeTrajectory) -> Vec<u8> {
     let mut s = String::with_capacity(t.points.len() * 200);
-    s.push_str("x,z,r,v,alpha,l,eye_z,eye_r,eye_v,lambda,u,margin\n");
+    s.push_str(&EYE.header());
     for p in &t.points {
         let _ = writeln!(
             s,
@@ -927,11 +931,7 @@ fn eye_csv(t: &EyeTrajectory) -> Vec<u8> {
 /// `blocks.csv`: every block of the program with its time, the axes at its
 /// end (NC units), its layer, least time and `mu`.
 fn blocks_csv(m: &Machine, p: &Assembled) -> Vec<u8> {
-    let mut csv = String::from("block,t");
-    for a in &m.axes {
-        let _ = write!(csv, ",{}", a.name);
-    }
-    csv.push_str(",layer,t_star,mu\n");
+    let mut csv = BLOCKS.header_with(&axis_names(m), false);
     for (n, b) in p.blocks.iter().enumerate() {
         let _ = write!(csv, "{},{}", n + 1, b.t);
         for v in &b.target {
@@ -948,11 +948,7 @@ fn blocks_csv(m: &Machine, p: &Assembled) -> Vec<u8> {
 fn program_axes(m: &Machine, p: &Assembled) -> (Vec<u8>, Value) {
     let program = &p.program;
     let mut csv = String::with_capacity(program.blocks.len() * 16 * (m.axes.len() + 1));
-    csv.push('t');
-    for a in &m.axes {
-        let _ = write!(csv, ",{}", a.name);
-    }
-    csv.push('\n');
+    csv.push_str(&PROGRAM_AXES.header_with(&axis_names(m), false));
     let mut lo = vec![f64::INFINITY; m.axes.len()];
     let mut hi = vec![f64::NEG_INFINITY; m.axes.len()];
     let mut t = 0.0;

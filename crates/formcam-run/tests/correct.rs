@@ -8,6 +8,7 @@ use std::path::Path;
 
 use common::{examples, job, json, plate, plate_program, scratch, text};
 use formcam_correct::{Interpolation, Options, Settings, Tool};
+use formcam_results::correction::{NODE_STATUS, PREDICTED};
 use formcam_run::{History, correct, correct_job, correct_simulate};
 
 #[test]
@@ -170,6 +171,20 @@ fn the_bundled_job_gives_its_program_plots_and_a_fresh_report() {
             "predicted-cmm.csv",
             "report.json"
         ]
+    );
+    // formcam-correct writes these two: their headers are the descriptions'.
+    let header = |name: &str| {
+        let bytes = &run.file(name).unwrap().bytes;
+        let text = String::from_utf8_lossy(bytes);
+        text.lines().next().map(|l| format!("{l}\n")).unwrap()
+    };
+    assert_eq!(header(NODE_STATUS.file), NODE_STATUS.header());
+    let predicted = header(PREDICTED.file);
+    assert!(
+        [false, true]
+            .iter()
+            .any(|&n| predicted == PREDICTED.header_with(&[], n)),
+        "{predicted}"
     );
     let r = json(&run.file("report.json").unwrap().bytes);
     // A row per feed node, its placement counted as the report counts it.

@@ -56,12 +56,15 @@
 //! and inch or per-revolution feeds are errors. `$` continuation lines are not
 //! supported.
 
+mod cldata;
+
 use crate::lex::{self, Lexed, Syntax, line_error};
 use crate::modal::{GCode, Modal, MotionMode};
 use crate::modulo::{Direction, unwrap};
 use crate::program::check_axes;
 use crate::{AxisSpec, Block, Dialect, Feed, Motion, NcError, Program};
-use formcam_files::quote;
+
+pub use cldata::{read_cldata, read_cldata_lines};
 
 const AXIS_LETTERS: &str = "XYZABCUVW";
 
@@ -480,163 +483,6 @@ impl Reader<'_> {
         Ok(())
     }
 }
-
-fn number(text: &str, lineno: usize, what: &str) -> Result<f64, NcError> {
-    let t = text.trim();
-    t.parse::<f64>()
-        .ok()
-        .filter(|v| v.is_finite())
-        .ok_or_else(|| NcError::parse(lineno, format!("{what}: `{}` is not a number", quote(t))))
-}
-
-/// Reads APT CLDATA as formcam's CLDATA writer writes it (machine-axis
-/// `GOTO` records) on `axes` (see the module documentation).
-pub fn read_cldata(text: &str, axes: &[AxisSpec]) -> Result<Program, NcError> {
-    read_cldata_lines(text, axes).map(|(p, _)| p)
-}
-
-/// Reads CLDATA as [`read_cldata`] does, with the line (1-based) of each
-/// block's `GOTO` (its first line when continued).
-pub fn read_cldata_lines(text: &str, axes: &[AxisSpec]) -> Result<(Program, Vec<usize>), NcError> {
-    let mut r = Reader::new(axes)?;
-    let mut rapid = false;
-    // (value, inverse)
-    let mut feed: Option<(f64, bool)> = None;
-    let mut in_header = true;
-    // Records continued after a `$` are joined (errors name their first line).
-    let mut records: Vec<(usize, String)> = Vec::new();
-    let mut open = false;
-    for (i, raw) in text.lines().enumerate() {
-        let line = raw.trim();
-        let cont = !line.starts_with("$$") && line.ends_with('$') && !line.ends_with("$$");
-        let body = if cont { &line[..line.len() - 1] } else { line };
-        match records.last_mut() {
-            Some((_, r)) if open => r.push_str(body),
-            _ => records.push((i + 1, body.to_string())),
-        }
-        open = cont;
-    }
-    for (lineno, line) in &records {
-        let (lineno, line) = (*lineno, line.as_str());
-        if let Some(c) = line.strip_prefix("$$") {
-            let c = c.trim().to_string();
-            if in_header {
-                r.program.header_comments.push(c);
-            } else {
-                r.pending = Some(match r.pending.take() {
-                    Some(p) => format!("{p}; {c}"),
-                    None => c,
-                });
-            }
-            continue;
-        }
-        let stmt = line.split("$$").next().unwrap_or("").trim();
-        if stmt.is_empty() {
-            continue;
-        }
-        let (word, args) = match stmt.split_once('/') {
-            Some((w, a)) => (w.trim().to_ascii_uppercase(), a),
-            None => (stmt.to_ascii_uppercase(), ""),
-        };
-        in_header &= word == "PARTNO";
-        match word.as_str() {
-            "PARTNO" => r.program.name = args.trim().to_string(),
-            "UNITS" if !args.trim().eq_ignore_ascii_case("MM") => {
-                return Err(NcError::parse(
-                    lineno,
-                    format!("UNITS/{}: only MM is supported", quote(args.trim())),
-                ));
-            }
-            "RAPID" => rapid = true,
-            "ORIGIN" => {
-                let mut parts = args.split(',');
-                let name = parts.next().unwrap_or("").trim();
-                let k = r
-                    .axes
-                    .iter()
-                    .position(|a| a.name.eq_ignore_ascii_case(name))
-                    .ok_or_else(|| {
-                        NcError::parse(
-                            lineno,
-                            format!(
-                                "ORIGIN/{}: not one of the program's axes ({})",
-                                quote(name),
-                                r.axis_names()
-                            ),
-                        )
-                    })?;
-                r.offset[k] = number(parts.next().unwrap_or(""), lineno, "ORIGIN")?;
-                r.rezeroed = true;
-            }
-            "FEDRAT" => {
-                let mut parts = args.split(',');
-                let f = number(parts.next().unwrap_or(""), lineno, "FEDRAT")?;
-                let unit = parts.next().map(|u| u.trim().to_ascii_uppercase());
-                let inverse = match unit.as_deref() {
-                    None | Some("MMPM") => false,
-                    Some("INVERS") => true,
-                    Some(u) => {
-                        return Err(NcError::parse(
-                            lineno,
-                            format!(
-                                "FEDRAT unit {}: only MMPM and INVERS are supported",
-                                quote(u)
-                            ),
-                        ));
-                    }
-                };
-                if f <= 0.0 {
-                    return Err(NcError::parse(
-                        lineno,
-                        format!("FEDRAT/{f} is not positive"),
-                    ));
-                }
-                feed = Some((f, inverse));
-            }
-            "GOTO" => {
-                let values = args
-                    .split(',')
-                    .zip(r.offset.iter().chain(std::iter::repeat(&0.0)))
-                    .map(|(v, o)| number(v, lineno, "GOTO").map(|v| v + o))
-                    .collect::<Result<Vec<_>, _>>()?;
-                if values.len() != axes.len() {
-                    return Err(NcError::parse(
-                        lineno,
-                        format!(
-                            "GOTO has {} values for {} axes ({})",
-                            values.len(),
-                            axes.len(),
-                            r.axis_names()
-                        ),
-                    ));
-                }
-                let (kind, feed) = if rapid {
-                    (Motion::Rapid, Feed::None)
-                } else {
-                    match feed {
-                        Some((f, false)) => (Motion::Linear, Feed::PerMinute(f)),
-                        Some((f, true)) => (Motion::Linear, Feed::InverseTime(60.0 / f)),
-                        None => return Err(NcError::parse(lineno, "GOTO before any FEDRAT")),
-                    }
-                };
-                rapid = false;
-                let comment = r.join_comment(None);
-                r.lines.push(lineno);
-                r.program.blocks.push(Block {
-                    kind,
-                    target: values,
-                    feed,
-                    comment,
-                    rezero: std::mem::take(&mut r.rezeroed),
-                });
-            }
-            "FINI" => break,
-            _ => {}
-        }
-    }
-    Ok((r.program, r.lines))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

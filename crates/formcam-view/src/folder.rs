@@ -5,6 +5,8 @@ use std::path::{Path, PathBuf};
 
 use formcam_machine::Machine;
 use formcam_nc::Dialect;
+use formcam_results::names::{self, REPORT, SUMMARY};
+use formcam_results::winding::PATH;
 use serde_json::{Map, Value};
 
 use crate::ViewError;
@@ -43,7 +45,7 @@ impl ResultKind {
                 path: root.to_path_buf(),
             });
         }
-        let summary = root.join("summary.json");
+        let summary = root.join(SUMMARY);
         if summary.is_file() {
             let s = read_summary(&summary)?;
             return Ok(if s.contains_key("dressing_time_s") {
@@ -54,7 +56,7 @@ impl ResultKind {
                 Self::Path
             });
         }
-        let report = root.join("report.json");
+        let report = root.join(REPORT);
         if report.is_file() {
             let r = read_summary(&report)?;
             if r.contains_key("measurements") || r.get("rounds").is_some_and(Value::is_array) {
@@ -83,7 +85,7 @@ fn results_within(root: &Path) -> Vec<String> {
     let mut names: Vec<String> = entries
         .filter_map(Result::ok)
         .map(|e| e.path())
-        .filter(|p| p.join("summary.json").is_file() || p.join("report.json").is_file())
+        .filter(|p| p.join(SUMMARY).is_file() || p.join(REPORT).is_file())
         .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
         .collect();
     names.sort();
@@ -139,7 +141,7 @@ impl RunFolder {
                 path: root.to_path_buf(),
             });
         }
-        let summary_path = root.join("summary.json");
+        let summary_path = root.join(SUMMARY);
         let summary = read_summary(&summary_path)?;
         if !summary.contains_key("program_file") {
             return Err(ViewError::NoProgram {
@@ -260,8 +262,8 @@ fn read_program(root: &Path, summary: &Path, name: &str) -> Result<ProgramFile, 
 /// `path.csv`, or that of the first layer (`layer-01/path.csv`).
 pub(crate) fn read_path_table(root: &Path) -> Result<Option<(PathBuf, String)>, ViewError> {
     for path in [
-        root.join("path.csv"),
-        root.join("layer-01").join("path.csv"),
+        root.join(PATH.file),
+        root.join(names::layer_dir(1)).join(PATH.file),
     ] {
         if path.is_file() {
             let text = read_text(&path)?;

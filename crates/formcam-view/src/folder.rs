@@ -7,15 +7,17 @@ use formcam_machine::Machine;
 use formcam_nc::Dialect;
 use formcam_results::names::{self, REPORT, SUMMARY};
 use formcam_results::winding::PATH;
+use formcam_results::{Entry, Kind};
 use serde_json::{Map, Value};
 
 use crate::ViewError;
 
-/// What a result folder holds, told apart by its files: a correction
-/// writes `report.json` naming its measurements (a closed-loop simulation,
-/// one listing its `rounds`) and no `summary.json`; a dressing's
-/// `summary.json` has `dressing_time_s`; any other `summary.json` is a
-/// winding result's, a [`ResultKind::Path`] one without `program_file`.
+/// What a result folder holds, told apart by its files as
+/// [`formcam_results::Kind::of`] tells it: a correction writes
+/// `report.json` naming its measurements (a closed-loop simulation, one
+/// listing its `rounds`) and no `summary.json`; a dressing's `summary.json`
+/// has `dressing_time_s`; any other `summary.json` is a winding result's, a
+/// [`ResultKind::Path`] one without `program_file`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ResultKind {
@@ -29,6 +31,17 @@ pub enum ResultKind {
     /// A winding result without a program (its summary names no
     /// `program_file`): the path, its tables and plots.
     Path,
+}
+
+impl From<Kind> for ResultKind {
+    fn from(kind: Kind) -> Self {
+        match kind {
+            Kind::Winding => Self::Winding,
+            Kind::Dressing => Self::Dressing,
+            Kind::Correction => Self::Correction,
+            Kind::Path => Self::Path,
+        }
+    }
 }
 
 impl ResultKind {
@@ -45,23 +58,17 @@ impl ResultKind {
                 path: root.to_path_buf(),
             });
         }
-        let summary = root.join(SUMMARY);
-        if summary.is_file() {
-            let s = read_summary(&summary)?;
-            return Ok(if s.contains_key("dressing_time_s") {
-                Self::Dressing
-            } else if s.contains_key("program_file") {
-                Self::Winding
-            } else {
-                Self::Path
-            });
-        }
-        let report = root.join(REPORT);
-        if report.is_file() {
-            let r = read_summary(&report)?;
-            if r.contains_key("measurements") || r.get("rounds").is_some_and(Value::is_array) {
-                return Ok(Self::Correction);
-            }
+        let keys = |name: &str| {
+            read_summary(&root.join(name)).map(|m| {
+                move |key: &str| match m.get(key) {
+                    None => Entry::Absent,
+                    Some(Value::Array(_)) => Entry::List,
+                    Some(_) => Entry::Value,
+                }
+            })
+        };
+        if let Some(kind) = Kind::of(|name| root.join(name).is_file(), keys)? {
+            return Ok(kind.into());
         }
         let within = results_within(root);
         if !within.is_empty() {

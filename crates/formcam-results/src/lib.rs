@@ -4,7 +4,8 @@
 //! lists it, so the three never disagree.
 //!
 //! A description is static data ([`Table`], [`Column`]); the fixed names of
-//! the other files are in [`names`]. [`markdown`] writes a table's columns as
+//! the other files are in [`names`], and [`Kind::of`] tells a result
+//! folder's kind by them. [`markdown`] writes a table's columns as
 //! the Markdown table of the docs.
 //!
 //! ```
@@ -22,11 +23,13 @@
 
 pub mod correction;
 pub mod dressing;
+mod kind;
 mod markdown;
 pub mod names;
 mod table;
 pub mod winding;
 
+pub use kind::{Entry, Kind};
 pub use markdown::{MarkedError, markdown, replace_marked};
 pub use table::{Column, Occurs, Table};
 

@@ -1,6 +1,8 @@
 //! The columns of a table as the Markdown table of the docs, and the docs'
 //! marked sections replaced by it.
 
+use formcam_schema::markdown::{cell, push_row, replace_section};
+
 use crate::table::{Occurs, Table};
 
 /// The columns of `table` as a Markdown table: column, unit, meaning (a
@@ -14,23 +16,12 @@ pub fn markdown(table: &Table) -> String {
             }
             _ => c.help.to_string(),
         };
-        let cells = [format!("`{}`", c.name), c.unit.to_string(), cell(&help)];
-        out.push('|');
-        for c in cells {
-            if c.is_empty() {
-                out.push_str(" |");
-            } else {
-                out.push_str(&format!(" {c} |"));
-            }
-        }
-        out.push('\n');
+        push_row(
+            &mut out,
+            &[format!("`{}`", c.name), c.unit.to_string(), cell(&help)],
+        );
     }
     out
-}
-
-/// Text made safe for a table cell: `|` escaped, lines joined.
-fn cell(s: &str) -> String {
-    s.replace('|', "\\|").replace('\n', " ")
 }
 
 /// A docs page whose marked section is missing or unclosed.
@@ -53,14 +44,13 @@ pub fn replace_marked(page: &str, tables: &[Table]) -> Result<String, MarkedErro
             continue;
         }
         done.push(t.id);
-        let open = format!("<!-- columns: {} -->\n", t.id);
-        let close = "<!-- /columns -->";
-        let missing = || MarkedError {
-            marker: t.id.to_string(),
-        };
-        let from = page.find(&open).ok_or_else(missing)? + open.len();
-        let to = from + page[from..].find(close).ok_or_else(missing)?;
-        page.replace_range(from..to, &markdown(t));
+        let open = format!("<!-- columns: {} -->", t.id);
+        page =
+            replace_section(&page, &open, "<!-- /columns -->", &markdown(t)).ok_or_else(|| {
+                MarkedError {
+                    marker: t.id.to_string(),
+                }
+            })?;
     }
     Ok(page)
 }

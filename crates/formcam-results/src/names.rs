@@ -23,6 +23,11 @@ pub const DEVIATIONS_AFTER_SVG: &str = "deviations-after.svg";
 pub const CONVERGENCE_SVG: &str = "convergence.svg";
 /// The stem of a program's file: `program.<ext>`.
 pub const PROGRAM_STEM: &str = "program";
+/// A dressing's program, the one its view plays: `program.mpf` (Siemens
+/// 840D); [`program`] of `mpf`.
+pub const DRESSING_PROGRAM: &str = "program.mpf";
+/// The stem of a corrected program's file: `corrected.<ext>`.
+pub const CORRECTED_STEM: &str = "corrected";
 /// The prefix of a layer's folder: `layer-NN/`.
 pub const LAYER_PREFIX: &str = "layer-";
 
@@ -34,6 +39,18 @@ pub fn program(ext: &str) -> String {
 /// Whether `name` is a program's file as [`program`] names it.
 pub fn is_program(name: &str) -> bool {
     name.strip_prefix(PROGRAM_STEM)
+        .is_some_and(|rest| rest.starts_with('.'))
+}
+
+/// A corrected program's file with the program's extension: `corrected.nc`.
+pub fn corrected(ext: &str) -> String {
+    format!("{CORRECTED_STEM}.{ext}")
+}
+
+/// Whether `name` starts as [`corrected`] names a file: `corrected.` (the
+/// program, and its plots' `corrected.<plot>.svg`).
+pub fn is_corrected(name: &str) -> bool {
+    name.strip_prefix(CORRECTED_STEM)
         .is_some_and(|rest| rest.starts_with('.'))
 }
 
@@ -70,6 +87,9 @@ mod tests {
     fn numbered_names_read_back() {
         assert_eq!(program("mpf"), "program.mpf");
         assert!(is_program("program.ngc") && !is_program("programs.csv"));
+        assert_eq!(DRESSING_PROGRAM, program("mpf"));
+        assert_eq!(corrected("nc"), "corrected.nc");
+        assert!(is_corrected("corrected.nc") && !is_corrected("corrections.nc"));
         assert_eq!(layer_dir(3), "layer-03");
         assert_eq!(layer_of(&layer_dir(12)), Some(12));
         assert_eq!(layer_of("layers"), None);

@@ -58,6 +58,14 @@ impl Column {
     }
 }
 
+/// A column stands for its header's name where a reader asks for a
+/// column by name (`table.numbers(winding::path::Z)`).
+impl AsRef<str> for Column {
+    fn as_ref(&self) -> &str {
+        self.name
+    }
+}
+
 /// A CSV result file: its name and its columns in order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Table {
@@ -120,5 +128,6 @@ mod tests {
         assert_eq!(T.header_with(&["X", "Y"], true), "a,X,Y,b\n");
         assert_eq!(T.column("b").map(|c| c.unit), Some(""));
         assert!(T.column("c").is_none());
+        assert_eq!(T.columns[0].as_ref(), "a");
     }
 }

@@ -5,11 +5,12 @@
 //!
 //! A description is static data ([`JobSchema`], [`Table`], [`Field`]),
 //! serialisable to JSON; [`validate`] checks a job's text against it before
-//! the reader's serde structs see it, and [`markdown`] writes a table's
-//! fields as the Markdown table of the docs.
+//! the reader's serde structs see it, and [`markdown()`] writes a table's
+//! fields as the Markdown table of the docs (the pieces of any docs table
+//! in [`mod@markdown`]).
 
 mod describe;
-mod markdown;
+pub mod markdown;
 mod validate;
 
 pub use describe::{

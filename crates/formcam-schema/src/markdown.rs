@@ -1,5 +1,7 @@
 //! The fields of a table as the Markdown table of the docs, and the docs'
-//! marked sections replaced by it.
+//! marked sections replaced by it; the pieces any docs table is written
+//! with ([`cell`], [`push_row`], [`replace_section`]), formcam-results'
+//! column tables too.
 
 use crate::describe::{Default, Field, JobSchema, Kind, Table};
 
@@ -52,6 +54,17 @@ fn row(out: &mut String, name: &str, f: &Field) {
         cell(&default),
         cell(f.help),
     ];
+    push_row(out, &cells);
+}
+
+/// Text made safe for a table cell: `|` escaped, lines joined.
+pub fn cell(s: &str) -> String {
+    s.replace('|', "\\|").replace('\n', " ")
+}
+
+/// A table row of `cells` (already made safe, [`cell`]) added to `out`
+/// with its newline: `| a | b |`, an empty cell as ` |`.
+pub fn push_row(out: &mut String, cells: &[String]) {
     out.push('|');
     for c in cells {
         if c.is_empty() {
@@ -63,9 +76,16 @@ fn row(out: &mut String, name: &str, f: &Field) {
     out.push('\n');
 }
 
-/// Text made safe for a table cell: `|` escaped, lines joined.
-fn cell(s: &str) -> String {
-    s.replace('|', "\\|").replace('\n', " ")
+/// `page` with the text between the line `open` (a marker such as
+/// `<!-- fields: winding.mandrel -->`, on a line of its own) and the next
+/// `close` after it replaced by `body`; `None` when either is missing.
+pub fn replace_section(page: &str, open: &str, close: &str, body: &str) -> Option<String> {
+    let open = format!("{open}\n");
+    let from = page.find(&open)? + open.len();
+    let to = from + page[from..].find(close)?;
+    let mut page = page.to_string();
+    page.replace_range(from..to, body);
+    Some(page)
 }
 
 /// A docs page whose marked section is missing or unclosed.
@@ -83,14 +103,9 @@ pub fn replace_marked(page: &str, schema: &JobSchema) -> Result<String, MarkedEr
     let mut page = page.to_string();
     for t in schema.tables {
         let marker = format!("{}.{}", schema.name, t.name);
-        let open = format!("<!-- fields: {marker} -->\n");
-        let close = "<!-- /fields -->";
-        let missing = || MarkedError {
-            marker: marker.clone(),
-        };
-        let from = page.find(&open).ok_or_else(missing)? + open.len();
-        let to = from + page[from..].find(close).ok_or_else(missing)?;
-        page.replace_range(from..to, &markdown(t));
+        let open = format!("<!-- fields: {marker} -->");
+        page = replace_section(&page, &open, "<!-- /fields -->", &markdown(t))
+            .ok_or(MarkedError { marker })?;
     }
     Ok(page)
 }

@@ -9,6 +9,8 @@
 use std::path::Path;
 
 use formcam_machine::Machine;
+use formcam_results::names;
+use formcam_results::winding::{AXES, BLOCKS, EYE, axes, blocks, eye};
 use serde::Serialize;
 use serde_json::{Map, Value};
 
@@ -85,7 +87,7 @@ impl Band {
         };
         let name = m.axes[spindle].name.as_str();
         let layers = layer_tables(root, summary, name)?;
-        let blocks = root.join("blocks.csv");
+        let blocks = root.join(BLOCKS.file);
         if layers.is_empty() || !blocks.is_file() {
             return Ok(None);
         }
@@ -232,7 +234,7 @@ fn layer_tables(
                 else {
                     continue;
                 };
-                let dir = root.join(format!("layer-{n:02}"));
+                let dir = root.join(names::layer_dir(n as usize));
                 if let Some(t) = tables(&dir, n as usize, c, spindle)? {
                     out.push(t);
                 }
@@ -257,17 +259,17 @@ fn tables(
     circuits: usize,
     spindle: &str,
 ) -> Result<Option<LayerTables>, ViewError> {
-    let (eye, axes) = (dir.join("eye.csv"), dir.join("axes.csv"));
-    if circuits == 0 || !eye.is_file() || !axes.is_file() {
+    let (eye_path, axes_path) = (dir.join(EYE.file), dir.join(AXES.file));
+    if circuits == 0 || !eye_path.is_file() || !axes_path.is_file() {
         return Ok(None);
     }
-    let e = Table::read(&eye)?;
-    let a = Table::read(&axes)?;
+    let e = Table::read(&eye_path)?;
+    let a = Table::read(&axes_path)?;
     // A whole program's `axes.csv` is by time, not by laid length.
-    if a.names().first().map(String::as_str) != Some("x") || e.len() < 2 || a.len() < 2 {
+    if a.names().first().map(String::as_str) != Some(axes::X.name) || e.len() < 2 || a.len() < 2 {
         return Ok(None);
     }
-    let columns = ["x", "z", "r", "v", "alpha"]
+    let columns = [eye::X, eye::Z, eye::R, eye::V, eye::ALPHA]
         .map(|c| e.numbers(c))
         .into_iter()
         .collect::<Result<Vec<_>, _>>()?;
@@ -275,7 +277,7 @@ fn tables(
         .map(|i| [0, 1, 2, 3, 4].map(|c| columns[c][i]))
         .collect();
     let spindle = a
-        .numbers("x")?
+        .numbers(axes::X)?
         .into_iter()
         .zip(a.numbers(spindle)?)
         .map(|(x, s)| [x, s])
@@ -301,7 +303,11 @@ struct LayerEnd {
 /// Per layer, where its last block in `blocks.csv` ends.
 fn layer_ends(path: &Path, spindle: &str) -> Result<Vec<LayerEnd>, ViewError> {
     let t = Table::read(path)?;
-    let (layers, times, angles) = (t.numbers("layer")?, t.numbers("t")?, t.numbers(spindle)?);
+    let (layers, times, angles) = (
+        t.numbers(blocks::LAYER)?,
+        t.numbers(blocks::T)?,
+        t.numbers(spindle)?,
+    );
     let mut out: Vec<LayerEnd> = Vec::new();
     let mut time_s = 0.0;
     for ((layer, dt), angle) in layers.into_iter().zip(times).zip(angles) {

@@ -15,9 +15,9 @@
 
 use std::path::{Component, Path, PathBuf};
 
-use formcam_correct::{
-    Grid, MeasuredPoint, Measurements, NODE_STATUS_FILE, PREDICTED_FILE, Placement,
-};
+use formcam_correct::{Grid, MeasuredPoint, Measurements, Placement};
+use formcam_results::correction::{NODE_STATUS, PREDICTED, node_status};
+use formcam_results::names;
 use serde::Serialize;
 use serde_json::{Map, Value};
 
@@ -243,7 +243,7 @@ impl CorrectionBody {
         if !report.contains_key("measurements") && report.contains_key("rounds") {
             return Self::read_loop(root, report);
         }
-        let report_path = root.join("report.json");
+        let report_path = root.join(names::REPORT);
         let name = report
             .get("measurements")
             .and_then(Value::as_str)
@@ -253,15 +253,15 @@ impl CorrectionBody {
         let program = std::fs::read_dir(root).ok().and_then(|d| {
             d.filter_map(Result::ok)
                 .map(|e| e.file_name().to_string_lossy().into_owned())
-                .filter(|n| n.starts_with("corrected.") && !n.ends_with(".svg"))
+                .filter(|n| names::is_corrected(n) && !n.ends_with(".svg"))
                 .min()
         });
         let mut body = Self::of(&m, plain_path(&name, root), program, report);
-        let predicted = root.join(PREDICTED_FILE);
+        let predicted = root.join(PREDICTED.file);
         if predicted.is_file() {
             body.after = Some(DeviationMap::of(&read_table_measurements(&predicted)?));
         }
-        let status = root.join(NODE_STATUS_FILE);
+        let status = root.join(NODE_STATUS.file);
         if status.is_file() {
             body.nodes = Some(NodeMarks::read(&status, NODE_MARKS)?);
         }
@@ -271,7 +271,7 @@ impl CorrectionBody {
     /// A closed loop's result: the map of each round the report lists
     /// (`cmm-<iteration>.csv`), the last one's on top.
     fn read_loop(root: &Path, report: Map<String, Value>) -> Result<Self, ViewError> {
-        let report_path = root.join("report.json");
+        let report_path = root.join(names::REPORT);
         let rounds = report
             .get("rounds")
             .and_then(Value::as_array)
@@ -285,13 +285,13 @@ impl CorrectionBody {
                 .get("iteration")
                 .and_then(Value::as_u64)
                 .map_or(k, |i| i as usize);
-            let measurements = format!("cmm-{iteration}.csv");
+            let measurements = names::round_cmm(iteration);
             let m = read_measurements(&report_path, &root.join(&measurements))?;
             surface = SurfaceMesh::of(&m);
             maps.push(RoundMap {
                 iteration,
                 measurements,
-                program: format!("program-{iteration}.nc"),
+                program: names::round_program(iteration),
                 map: DeviationMap::of(&m),
             });
         }
@@ -409,10 +409,18 @@ impl NodeMarks {
     /// missing column, a bad number or an unknown placement.
     pub fn read(path: &Path, most: usize) -> Result<Self, ViewError> {
         let t = Table::read(path)?;
-        let [x, y, z, dx, dy, dz] = ["x", "y", "z", "dx", "dy", "dz"].map(|c| t.numbers(c));
+        let [x, y, z, dx, dy, dz] = [
+            node_status::X,
+            node_status::Y,
+            node_status::Z,
+            node_status::DX,
+            node_status::DY,
+            node_status::DZ,
+        ]
+        .map(|c| t.numbers(c));
         let (x, y, z, dx, dy, dz) = (x?, y?, z?, dx?, dy?, dz?);
         let placement = t
-            .words("placement")?
+            .words(node_status::PLACEMENT)?
             .into_iter()
             .enumerate()
             .map(|(k, w)| {
@@ -420,7 +428,8 @@ impl NodeMarks {
                     path: path.to_path_buf(),
                     line: k + 2,
                     problem: format!(
-                        "`placement` is `{}`: inside, extrapolated, outside or unknown",
+                        "`{}` is `{}`: inside, extrapolated, outside or unknown",
+                        node_status::PLACEMENT.name,
                         formcam_files::quote(w)
                     ),
                 })
@@ -445,7 +454,7 @@ impl NodeMarks {
         let every = t.len().div_ceil(most.max(1)).max(1);
         let pick = |v: &[f64]| v.iter().step_by(every).copied().collect::<Vec<_>>();
         Ok(Self {
-            file: NODE_STATUS_FILE.to_owned(),
+            file: NODE_STATUS.file.to_owned(),
             x: pick(&x),
             y: pick(&y),
             z: pick(&z),
@@ -494,12 +503,12 @@ mod tests {
 
     #[test]
     fn deviations_along_the_normal_and_per_section() {
-        let csv = "section,point,x_nom,y_nom,z_nom,x_act,y_act,z_act,nx,ny,nz\n\
-                   S1,1,0,0,1,0.3,0,1.4,0.6,0,0.8\n\
+        let csv = PREDICTED.header_with(&[], true)
+            + "S1,1,0,0,1,0.3,0,1.4,0.6,0,0.8\n\
                    S1,2,10,0,1,10,0,0.9,0,0,1\n\
                    S2,1,0,5,2,0,5,2.2,0,0,1\n";
-        let m = Measurements::from_csv(csv).unwrap();
-        let b = CorrectionBody::of(&m, "cmm.csv".into(), None, Map::new()).map;
+        let m = Measurements::from_csv(&csv).unwrap();
+        let b = CorrectionBody::of(&m, names::round_cmm(0), None, Map::new()).map;
         assert_eq!(b.x, [0.0, 10.0, 0.0]);
         assert_eq!(b.y, [0.0, 0.0, 5.0]);
         assert_eq!(b.section, [0, 0, 1]);
@@ -520,11 +529,11 @@ mod tests {
     fn nodes_are_counted_every_one_and_sent_thinned() {
         let dir = std::env::temp_dir().join(format!("formcam-view-nodes-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join(NODE_STATUS_FILE);
+        let path = dir.join(NODE_STATUS.file);
         std::fs::write(
             &path,
-            "line,x,y,z,placement,dx,dy,dz\n\
-             3,0,0,1,inside,0,0,-0.1\n4,1,0,1,inside,0,0,0\n5,2,0,1,extrapolated,0,0.01,0\n\
+            NODE_STATUS.header()
+                + "3,0,0,1,inside,0,0,-0.1\n4,1,0,1,inside,0,0,0\n5,2,0,1,extrapolated,0,0.01,0\n\
              6,3,0,1,outside,0,0,0\n7,4,0,1,unknown,0,0,0\n",
         )
         .unwrap();
@@ -548,11 +557,7 @@ mod tests {
         assert_eq!((few.every, few.x.clone()), (3, vec![0.0, 3.0]));
         assert_eq!(few.placement, [Placement::Inside, Placement::Outside]);
         assert_eq!(few.counts, all.counts);
-        std::fs::write(
-            &path,
-            "line,x,y,z,placement,dx,dy,dz\n3,0,0,1,beside,0,0,0\n",
-        )
-        .unwrap();
+        std::fs::write(&path, NODE_STATUS.header() + "3,0,0,1,beside,0,0,0\n").unwrap();
         let e = NodeMarks::read(&path, 10).unwrap_err().to_string();
         assert!(
             e.ends_with(":2: `placement` is `beside`: inside, extrapolated, outside or unknown"),

@@ -14,11 +14,17 @@ use formcam_sim::{FeedRule, Timeline};
 use serde::Serialize;
 use serde_json::{Map, Value};
 
+use formcam_results::dressing::{
+    CONTOUR_FINAL, CONTOUR_INITIAL, CONTOUR_PASSES, DRESSER, MRR, PROFILE, contour_passes, dresser,
+    mrr, zx,
+};
+use formcam_results::names;
+
 use crate::ViewError;
 use crate::table::Table;
 
 /// The program the dressing view plays.
-pub const DRESSING_PROGRAM: &str = "program.mpf";
+pub const DRESSING_PROGRAM: &str = names::DRESSING_PROGRAM;
 
 /// A dressing result, read once.
 #[derive(Debug, Clone)]
@@ -122,10 +128,10 @@ impl DressingView {
         let timeline = program_timeline(&program, &program_path)?;
         let pairs = |name: &str| -> Result<Vec<[f64; 2]>, ViewError> {
             let t = Table::read(&root.join(name))?;
-            Ok(zip(&t.numbers("z")?, &t.numbers("x")?))
+            Ok(zip(&t.numbers(zx::Z)?, &t.numbers(zx::X)?))
         };
-        let dresser = Table::read(&root.join("dresser.csv"))?;
-        let mrr = Table::read(&root.join("mrr.csv"))?;
+        let dresser = Table::read(&root.join(DRESSER.file))?;
+        let mrr_table = Table::read(&root.join(MRR.file))?;
         let mut t = Vec::with_capacity(timeline.len() + 1);
         let mut points = Vec::with_capacity(timeline.len() + 1);
         let mut lines = Vec::with_capacity(timeline.len());
@@ -147,18 +153,22 @@ impl DressingView {
         }
         t.push(timeline.duration_s());
         let body = DressingBody {
-            profile: pairs("profile.csv")?,
-            initial: pairs("contour_initial.csv")?,
-            final_contour: pairs("contour_final.csv")?,
+            profile: pairs(PROFILE.file)?,
+            initial: pairs(CONTOUR_INITIAL.file)?,
+            final_contour: pairs(CONTOUR_FINAL.file)?,
             contours: contours(root)?,
             passes: passes(&dresser, summary)?,
             mrr: MrrPlot {
-                pass: mrr.numbers("pass")?.iter().map(|p| *p as usize).collect(),
-                z: mrr.numbers("z")?,
-                x: mrr.numbers("x")?,
-                mrr: mrr.numbers("mrr")?,
-                feed: mrr.numbers("feed")?,
-                mrr_uncontrolled: mrr.numbers("mrr_uncontrolled")?,
+                pass: mrr_table
+                    .numbers(mrr::PASS)?
+                    .iter()
+                    .map(|p| *p as usize)
+                    .collect(),
+                z: mrr_table.numbers(mrr::Z)?,
+                x: mrr_table.numbers(mrr::X)?,
+                mrr: mrr_table.numbers(mrr::MRR)?,
+                feed: mrr_table.numbers(mrr::FEED)?,
+                mrr_uncontrolled: mrr_table.numbers(mrr::MRR_UNCONTROLLED)?,
                 feed_uncontrolled: summary
                     .get("feed_uncontrolled_mm_min")
                     .and_then(Value::as_f64),
@@ -234,18 +244,19 @@ fn program_timeline(text: &str, path: &Path) -> Result<Timeline, ViewError> {
     })
 }
 
-/// The file of the contours after each pass.
-const CONTOUR_PASSES: &str = "contour_passes.csv";
-
 /// The contour after each pass (`contour_passes.csv`: `z,x,pass`), pass
 /// after pass; none for a result written before that file was.
 fn contours(root: &Path) -> Result<Vec<Vec<[f64; 2]>>, ViewError> {
-    let path = root.join(CONTOUR_PASSES);
+    let path = root.join(CONTOUR_PASSES.file);
     if !path.exists() {
         return Ok(Vec::new());
     }
     let t = Table::read(&path)?;
-    let (z, x, pass) = (t.numbers("z")?, t.numbers("x")?, t.numbers("pass")?);
+    let (z, x, pass) = (
+        t.numbers(zx::Z)?,
+        t.numbers(zx::X)?,
+        t.numbers(contour_passes::PASS)?,
+    );
     let mut out: Vec<Vec<[f64; 2]>> = Vec::new();
     let mut current = None;
     for i in 0..z.len() {
@@ -268,9 +279,9 @@ fn zip(a: &[f64], b: &[f64]) -> Vec<[f64; 2]> {
 /// of the corner's centre from point A (the same along a pass) and the
 /// radius from the summary's `passes`.
 fn passes(t: &Table, summary: &Map<String, Value>) -> Result<Vec<DresserPass>, ViewError> {
-    let (z, x) = (t.numbers("z")?, t.numbers("x")?);
-    let (cz, cx) = (t.numbers("corner_z")?, t.numbers("corner_x")?);
-    let pass = t.numbers("pass")?;
+    let (z, x) = (t.numbers(dresser::Z)?, t.numbers(dresser::X)?);
+    let (cz, cx) = (t.numbers(dresser::CORNER_Z)?, t.numbers(dresser::CORNER_X)?);
+    let pass = t.numbers(dresser::PASS)?;
     let radius = |n: usize| {
         summary
             .get("passes")

@@ -5,15 +5,19 @@ use std::path::{Path, PathBuf};
 
 use formcam_machine::Machine;
 use formcam_nc::Dialect;
+use formcam_results::names::{self, REPORT, SUMMARY};
+use formcam_results::winding::PATH;
+use formcam_results::{Entry, Kind};
 use serde_json::{Map, Value};
 
 use crate::ViewError;
 
-/// What a result folder holds, told apart by its files: a correction
-/// writes `report.json` naming its measurements (a closed-loop simulation,
-/// one listing its `rounds`) and no `summary.json`; a dressing's
-/// `summary.json` has `dressing_time_s`; any other `summary.json` is a
-/// winding result's, a [`ResultKind::Path`] one without `program_file`.
+/// What a result folder holds, told apart by its files as
+/// [`formcam_results::Kind::of`] tells it: a correction writes
+/// `report.json` naming its measurements (a closed-loop simulation, one
+/// listing its `rounds`) and no `summary.json`; a dressing's `summary.json`
+/// has `dressing_time_s`; any other `summary.json` is a winding result's, a
+/// [`ResultKind::Path`] one without `program_file`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ResultKind {
@@ -27,6 +31,17 @@ pub enum ResultKind {
     /// A winding result without a program (its summary names no
     /// `program_file`): the path, its tables and plots.
     Path,
+}
+
+impl From<Kind> for ResultKind {
+    fn from(kind: Kind) -> Self {
+        match kind {
+            Kind::Winding => Self::Winding,
+            Kind::Dressing => Self::Dressing,
+            Kind::Correction => Self::Correction,
+            Kind::Path => Self::Path,
+        }
+    }
 }
 
 impl ResultKind {
@@ -43,23 +58,17 @@ impl ResultKind {
                 path: root.to_path_buf(),
             });
         }
-        let summary = root.join("summary.json");
-        if summary.is_file() {
-            let s = read_summary(&summary)?;
-            return Ok(if s.contains_key("dressing_time_s") {
-                Self::Dressing
-            } else if s.contains_key("program_file") {
-                Self::Winding
-            } else {
-                Self::Path
-            });
-        }
-        let report = root.join("report.json");
-        if report.is_file() {
-            let r = read_summary(&report)?;
-            if r.contains_key("measurements") || r.get("rounds").is_some_and(Value::is_array) {
-                return Ok(Self::Correction);
-            }
+        let keys = |name: &str| {
+            read_summary(&root.join(name)).map(|m| {
+                move |key: &str| match m.get(key) {
+                    None => Entry::Absent,
+                    Some(Value::Array(_)) => Entry::List,
+                    Some(_) => Entry::Value,
+                }
+            })
+        };
+        if let Some(kind) = Kind::of(|name| root.join(name).is_file(), keys)? {
+            return Ok(kind.into());
         }
         let within = results_within(root);
         if !within.is_empty() {
@@ -83,7 +92,7 @@ fn results_within(root: &Path) -> Vec<String> {
     let mut names: Vec<String> = entries
         .filter_map(Result::ok)
         .map(|e| e.path())
-        .filter(|p| p.join("summary.json").is_file() || p.join("report.json").is_file())
+        .filter(|p| p.join(SUMMARY).is_file() || p.join(REPORT).is_file())
         .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
         .collect();
     names.sort();
@@ -139,7 +148,7 @@ impl RunFolder {
                 path: root.to_path_buf(),
             });
         }
-        let summary_path = root.join("summary.json");
+        let summary_path = root.join(SUMMARY);
         let summary = read_summary(&summary_path)?;
         if !summary.contains_key("program_file") {
             return Err(ViewError::NoProgram {
@@ -260,8 +269,8 @@ fn read_program(root: &Path, summary: &Path, name: &str) -> Result<ProgramFile, 
 /// `path.csv`, or that of the first layer (`layer-01/path.csv`).
 pub(crate) fn read_path_table(root: &Path) -> Result<Option<(PathBuf, String)>, ViewError> {
     for path in [
-        root.join("path.csv"),
-        root.join("layer-01").join("path.csv"),
+        root.join(PATH.file),
+        root.join(names::layer_dir(1)).join(PATH.file),
     ] {
         if path.is_file() {
             let text = read_text(&path)?;

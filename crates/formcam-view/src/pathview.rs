@@ -10,6 +10,8 @@
 use std::path::Path;
 
 use formcam_machine::Machine;
+use formcam_results::names;
+use formcam_results::winding::{AXES, EYE, eye, path};
 use nalgebra::{Isometry3, Point3};
 use serde::Serialize;
 use serde_json::{Map, Value};
@@ -84,7 +86,7 @@ impl PathView {
             None if summary.contains_key("machine_shipped")
                 || summary.contains_key("machine_file") =>
             {
-                let (m, file) = summary_machine(&root.join("summary.json"), summary)?;
+                let (m, file) = summary_machine(&root.join(names::SUMMARY), summary)?;
                 (Some(m), file)
             }
             None => (None, None),
@@ -150,11 +152,11 @@ fn pose7(p: &Isometry3<f64>) -> [f64; 7] {
 /// where there is no `axes.csv`.
 fn first_row(root: &Path, m: &Machine) -> Result<(Vec<f64>, String), ViewError> {
     let mut q = m.home();
-    let path = root.join("axes.csv");
-    if !path.is_file() {
+    let file = root.join(AXES.file);
+    if !file.is_file() {
         return Ok((q, "home".into()));
     }
-    let t = Table::read(&path)?;
+    let t = Table::read(&file)?;
     if t.is_empty() {
         return Ok((q, "home".into()));
     }
@@ -165,16 +167,20 @@ fn first_row(root: &Path, m: &Machine) -> Result<(Vec<f64>, String), ViewError> 
             q[k] = if a.is_rotary() { v.to_radians() } else { *v };
         }
     }
-    Ok((q, "axes.csv row 1".into()))
+    Ok((q, format!("{} row 1", AXES.file)))
 }
 
 /// The pass of the path table laid once per circuit, each turned by
 /// `2 pi / circuits` about the mandrel's axis, thinned to [`BAND_POINTS`].
-fn pass_band(text: &str, path: &Path, link: usize, circuits: usize) -> Result<PathBand, ViewError> {
-    let t = Table::parse(text, path)?;
-    let (z, r, v) = (t.numbers("z")?, t.numbers("r")?, t.numbers("v")?);
-    let alpha = if t.has("alpha") {
-        t.numbers("alpha")?
+fn pass_band(text: &str, file: &Path, link: usize, circuits: usize) -> Result<PathBand, ViewError> {
+    let t = Table::parse(text, file)?;
+    let (z, r, v) = (
+        t.numbers(path::Z)?,
+        t.numbers(path::R)?,
+        t.numbers(path::V)?,
+    );
+    let alpha = if t.has(path::ALPHA) {
+        t.numbers(path::ALPHA)?
     } else {
         vec![0.0; z.len()]
     };
@@ -213,18 +219,21 @@ fn pass_band(text: &str, path: &Path, link: usize, circuits: usize) -> Result<Pa
 /// `eye.csv`'s eye points (`eye_z`, `eye_r`, `eye_v` in the mandrel's
 /// frame) placed by the mandrel's pose, or `None` without the table.
 fn eye_points(root: &Path, mandrel: &Isometry3<f64>) -> Result<Option<Vec<[f64; 3]>>, ViewError> {
-    let path = root.join("eye.csv");
-    if !path.is_file() {
+    let file = root.join(EYE.file);
+    if !file.is_file() {
         return Ok(None);
     }
-    let t = Table::read(&path)?;
-    if !["eye_z", "eye_r", "eye_v"].iter().all(|c| t.has(c)) {
+    let t = Table::read(&file)?;
+    if ![eye::EYE_Z, eye::EYE_R, eye::EYE_V]
+        .iter()
+        .all(|c| t.has(c))
+    {
         return Ok(None);
     }
     let (z, r, v) = (
-        t.numbers("eye_z")?,
-        t.numbers("eye_r")?,
-        t.numbers("eye_v")?,
+        t.numbers(eye::EYE_Z)?,
+        t.numbers(eye::EYE_R)?,
+        t.numbers(eye::EYE_V)?,
     );
     let points = (0..z.len())
         .map(|i| {
@@ -240,11 +249,12 @@ mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used)]
 
     use super::*;
+    use formcam_results::winding::PATH;
 
     #[test]
     fn each_circuit_is_the_pass_turned_by_its_share_of_a_turn() {
         let text = "s,z,r,v,alpha\n0,0,30,0,0.5\n1,10,40,0.25,0.5\n2,20,50,0.5,0.5\n";
-        let b = pass_band(text, Path::new("path.csv"), 0, 4).unwrap();
+        let b = pass_band(text, Path::new(PATH.file), 0, 4).unwrap();
         assert_eq!(b.layers, vec![0, 3, 6, 9]);
         assert_eq!(b.points.len(), 12);
         for k in 0..4 {
@@ -265,7 +275,7 @@ mod tests {
         for i in 0..5000 {
             text.push_str(&format!("{i},30,{}\n", f64::from(i) * 0.01));
         }
-        let b = pass_band(&text, Path::new("path.csv"), 2, 60).unwrap();
+        let b = pass_band(&text, Path::new(PATH.file), 2, 60).unwrap();
         assert!(b.points.len() <= BAND_POINTS);
         assert_eq!(b.layers.len(), 60);
         assert_eq!(b.link, 2);

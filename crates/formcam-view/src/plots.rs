@@ -8,6 +8,8 @@
 
 use std::path::{Path, PathBuf};
 
+use formcam_results::names;
+use formcam_results::winding::{EYE, PATH, eye, path};
 use formcam_sim::Timeline;
 use serde::Serialize;
 
@@ -137,23 +139,26 @@ impl WindingPlots {
         let mut meridian = Vec::new();
         let mut pull = Vec::new();
         for (layer, dir) in layer_folders(root)? {
-            let path = dir.join("path.csv");
-            if path.is_file() {
+            let path_file = dir.join(PATH.file);
+            if path_file.is_file() {
                 // A path table without the angle and thickness (written by
                 // other tools, or cut down) has no meridian plot.
-                let t = Table::read(&path)?;
-                if ["z", "alpha_deg", "thickness"].iter().all(|c| t.has(c)) {
+                let t = Table::read(&path_file)?;
+                if [path::Z, path::ALPHA_DEG, path::THICKNESS]
+                    .iter()
+                    .all(|c| t.has(c))
+                {
                     meridian.push(meridian_plot(layer, &t)?);
                 }
             }
-            let eye = dir.join("eye.csv");
-            if eye.is_file() {
-                let t = Table::read(&eye)?;
-                if t.has("u") {
+            let eye_file = dir.join(EYE.file);
+            if eye_file.is_file() {
+                let t = Table::read(&eye_file)?;
+                if t.has(eye::U) {
                     pull.push(PullPlot {
                         layer,
-                        x: t.numbers("x")?,
-                        u: t.numbers("u")?,
+                        x: t.numbers(eye::X)?,
+                        u: t.numbers(eye::U)?,
                     });
                 }
             }
@@ -170,7 +175,7 @@ impl WindingPlots {
 /// result folder itself (layer 1) when it has `path.csv`, else every
 /// `layer-NN/` in order.
 fn layer_folders(root: &Path) -> Result<Vec<(usize, PathBuf)>, ViewError> {
-    if root.join("path.csv").is_file() {
+    if root.join(PATH.file).is_file() {
         return Ok(vec![(1, root.to_path_buf())]);
     }
     let entries = std::fs::read_dir(root).map_err(|_| ViewError::NoFolder {
@@ -181,7 +186,7 @@ fn layer_folders(root: &Path) -> Result<Vec<(usize, PathBuf)>, ViewError> {
         .filter(|e| e.file_type().is_ok_and(|t| t.is_dir()))
         .filter_map(|e| {
             let name = e.file_name().to_string_lossy().into_owned();
-            let n = name.strip_prefix("layer-")?.parse::<usize>().ok()?;
+            let n = names::layer_of(&name)?;
             Some((n, e.path()))
         })
         .collect();
@@ -192,9 +197,9 @@ fn layer_folders(root: &Path) -> Result<Vec<(usize, PathBuf)>, ViewError> {
 /// A pass's winding angle and thickness by ascending `z` (a pass from the
 /// far end is read backwards; one that turns back on itself is sorted).
 fn meridian_plot(layer: usize, t: &Table) -> Result<MeridianPlot, ViewError> {
-    let z = t.numbers("z")?;
-    let alpha = t.numbers("alpha_deg")?;
-    let thickness = t.numbers("thickness")?;
+    let z = t.numbers(path::Z)?;
+    let alpha = t.numbers(path::ALPHA_DEG)?;
+    let thickness = t.numbers(path::THICKNESS)?;
     let mut order: Vec<usize> = (0..z.len()).collect();
     if z.windows(2).all(|w| w[0] >= w[1]) {
         order.reverse();
@@ -250,7 +255,7 @@ mod tests {
     fn a_pass_from_the_far_end_is_read_by_ascending_z() {
         let t = Table::parse(
             "z,alpha_deg,thickness\n3,30,0.5\n2,20,0.4\n1,10,0.3\n",
-            Path::new("path.csv"),
+            Path::new(PATH.file),
         )
         .unwrap();
         let m = meridian_plot(2, &t).unwrap();
@@ -259,7 +264,7 @@ mod tests {
         assert_eq!(m.thickness, [0.3, 0.4, 0.5]);
         let t = Table::parse(
             "z,alpha_deg,thickness\n1,10,0\n3,30,0\n2,20,0\n",
-            Path::new("path.csv"),
+            Path::new(PATH.file),
         )
         .unwrap();
         assert_eq!(meridian_plot(1, &t).unwrap().alpha_deg, [10.0, 20.0, 30.0]);

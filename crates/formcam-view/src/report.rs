@@ -11,6 +11,7 @@
 use std::path::{Path, PathBuf};
 
 use formcam_machine::{JointKind, Machine};
+use formcam_results::names;
 use nalgebra::UnitQuaternion;
 use serde::Serialize;
 use serde_json::{Map, Value};
@@ -162,9 +163,9 @@ fn guard_output(root: &Path, out: &Path) -> Result<(), ViewError> {
 /// file, the measurements), as the run was given them.
 fn inputs(root: &Path, kind: ResultKind) -> Vec<PathBuf> {
     let name = if kind == ResultKind::Correction {
-        "report.json"
+        names::REPORT
     } else {
-        "summary.json"
+        names::SUMMARY
     };
     let Ok(s) = read_summary(&root.join(name)) else {
         return Vec::new();

@@ -6,6 +6,8 @@
 use std::path::Path;
 
 use formcam_machine::{Machine, Shape, read_visual_mesh};
+use formcam_results::Column;
+use formcam_results::winding::path;
 use serde::Serialize;
 
 use crate::ViewError;
@@ -208,24 +210,24 @@ impl MandrelScene {
             .filter(|(_, l)| !l.trim().is_empty());
         let (_, header) = rows.next().ok_or_else(|| bad(1, "empty file".into()))?;
         let names: Vec<&str> = header.split(',').map(str::trim).collect();
-        let col = |name: &str| {
+        let col = |c: Column| {
             names
                 .iter()
-                .position(|n| *n == name)
-                .ok_or_else(|| bad(1, format!("no column `{name}`")))
+                .position(|n| *n == c.name)
+                .ok_or_else(|| bad(1, format!("no column `{}`", c.name)))
         };
-        let (cz, cr, cv) = (col("z")?, col("r")?, col("v")?);
+        let (cz, cr, cv) = (col(path::Z)?, col(path::R)?, col(path::V)?);
         let mut points = Vec::new();
         for (i, line) in rows {
             let cells: Vec<&str> = line.split(',').map(str::trim).collect();
-            let num = |c: usize, name: &str| {
+            let num = |k: usize, c: Column| {
                 cells
-                    .get(c)
+                    .get(k)
                     .and_then(|s| s.parse::<f64>().ok())
                     .filter(|v| v.is_finite())
-                    .ok_or_else(|| bad(i + 1, format!("`{name}` is no finite number")))
+                    .ok_or_else(|| bad(i + 1, format!("`{}` is no finite number", c.name)))
             };
-            points.push((num(cz, "z")?, num(cr, "r")?, num(cv, "v")?));
+            points.push((num(cz, path::Z)?, num(cr, path::R)?, num(cv, path::V)?));
         }
         let mut meridian: Vec<[f64; 2]> = points.iter().map(|p| [p.0, p.1]).collect();
         meridian.sort_by(|a, b| a[0].total_cmp(&b[0]));
@@ -258,6 +260,7 @@ mod tests {
     #![allow(clippy::unwrap_used, clippy::expect_used)]
 
     use super::*;
+    use formcam_results::winding::PATH;
 
     #[test]
     fn thinning_keeps_both_ends_and_at_most_n() {
@@ -272,7 +275,7 @@ mod tests {
     #[test]
     fn the_path_lies_on_the_meridian_it_comes_from() {
         let text = "s,z,r,v\n0,0,30,0\n1,10,40,0.5\n2,20,50,3.0\n";
-        let m = MandrelScene::from_path_table(2, text, Path::new("path.csv")).unwrap();
+        let m = MandrelScene::from_path_table(2, text, Path::new(PATH.file)).unwrap();
         assert_eq!(m.meridian, vec![[0.0, 30.0], [10.0, 40.0], [20.0, 50.0]]);
         for (p, [_, r]) in m.path.iter().zip(&m.meridian) {
             assert!(((p[0] * p[0] + p[1] * p[1]).sqrt() - r).abs() < 1e-12);
@@ -282,9 +285,9 @@ mod tests {
 
     #[test]
     fn a_missing_column_names_it() {
-        let e = MandrelScene::from_path_table(0, "s,z,r\n0,0,1\n", Path::new("path.csv"))
+        let e = MandrelScene::from_path_table(0, "s,z,r\n0,0,1\n", Path::new(PATH.file))
             .unwrap_err()
             .to_string();
-        assert_eq!(e, "path.csv:1: no column `v`");
+        assert_eq!(e, format!("{}:1: no column `{}`", PATH.file, path::V.name));
     }
 }

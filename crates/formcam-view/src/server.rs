@@ -13,6 +13,8 @@ use axum::body::Body;
 use axum::extract::{Request, State};
 use axum::http::{HeaderValue, Method, StatusCode, header};
 use axum::response::Response;
+use formcam_results::names;
+use formcam_results::winding::PATH;
 use hyper::server::conn::http1;
 use hyper_util::rt::{TokioIo, TokioTimer};
 use hyper_util::service::TowerToHyperService;
@@ -140,12 +142,12 @@ impl View {
             path: root.to_path_buf(),
         })?;
         let (summary, dressing, correction) = if kind == ResultKind::Dressing {
-            let s = read_summary(&root.join("summary.json"))?;
+            let s = read_summary(&root.join(names::SUMMARY))?;
             let d = DressingView::read(root, &s)?;
             let body = json(d.body());
             (json(&s), Some((d, body)), None)
         } else {
-            let r = read_summary(&root.join("report.json"))?;
+            let r = read_summary(&root.join(names::REPORT))?;
             let c = CorrectionBody::read(root, r.clone())?;
             (json(&r), None, Some(json(&c)))
         };
@@ -174,12 +176,12 @@ impl View {
         let real = root.canonicalize().map_err(|_| ViewError::NoFolder {
             path: root.to_path_buf(),
         })?;
-        let summary = read_summary(&root.join("summary.json"))?;
+        let summary = read_summary(&root.join(names::SUMMARY))?;
         // Without a path table: the error of reading `path.csv`.
         let table = match read_path_table(root)? {
             Some(t) => t,
             None => {
-                let p = root.join("path.csv");
+                let p = root.join(PATH.file);
                 let text = read_text(&p)?;
                 (p, text)
             }

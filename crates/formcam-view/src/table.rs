@@ -1,6 +1,8 @@
 //! A CSV table of a result folder (a header row, then rows of cells), read
-//! by column name: the tables the plots, the dressing and the correction
-//! views draw.
+//! by column: the tables the plots, the dressing and the correction views
+//! draw. A column is asked for as formcam-results describes it
+//! (`table.numbers(winding::path::Z)`), or by the name a writer gave it (an
+//! axis, a key point).
 
 use std::path::{Path, PathBuf};
 
@@ -71,8 +73,10 @@ impl Table {
         &self.names
     }
 
-    /// Whether the table has the column `name`.
-    pub fn has(&self, name: &str) -> bool {
+    /// Whether the table has the column `name` (a [`formcam_results::Column`]
+    /// or a name).
+    pub fn has(&self, name: impl AsRef<str>) -> bool {
+        let name = name.as_ref();
         self.names.iter().any(|n| n == name)
     }
 
@@ -87,14 +91,14 @@ impl Table {
             })
     }
 
-    /// The column `name`'s cells, as written (trimmed); a row without the
+    /// The column `name`'s (a [`formcam_results::Column`] or a name) cells, as written (trimmed); a row without the
     /// cell gives `""`.
     ///
     /// # Errors
     ///
     /// [`ViewError::Table`] for a missing column.
-    pub fn words(&self, name: &str) -> Result<Vec<&str>, ViewError> {
-        let c = self.column(name)?;
+    pub fn words(&self, name: impl AsRef<str>) -> Result<Vec<&str>, ViewError> {
+        let c = self.column(name.as_ref())?;
         Ok(self
             .rows
             .iter()
@@ -102,13 +106,15 @@ impl Table {
             .collect())
     }
 
-    /// The column `name` as finite numbers.
+    /// The column `name` (a [`formcam_results::Column`] or a name) as finite
+    /// numbers.
     ///
     /// # Errors
     ///
     /// [`ViewError::Table`] naming the line and the column for a missing
     /// column or a cell that is no finite number.
-    pub fn numbers(&self, name: &str) -> Result<Vec<f64>, ViewError> {
+    pub fn numbers(&self, name: impl AsRef<str>) -> Result<Vec<f64>, ViewError> {
+        let name = name.as_ref();
         let c = self.column(name)?;
         self.rows
             .iter()
@@ -135,16 +141,16 @@ mod tests {
 
     #[test]
     fn columns_by_name_and_errors_naming_the_line() {
-        let t = Table::parse("a, b\n1,2\n\n3, 4.5\n", Path::new("t.csv")).unwrap();
+        let t = Table::parse("a, b\n1,2\n\n3, 4.5\n", Path::new("t")).unwrap();
         assert_eq!(t.len(), 2);
         assert_eq!(t.numbers("b").unwrap(), vec![2.0, 4.5]);
         assert!(t.has("a") && !t.has("c"));
         assert_eq!(t.words("a").unwrap(), ["1", "3"]);
         let e = t.numbers("c").unwrap_err().to_string();
-        assert_eq!(e, "t.csv:1: no column `c`");
-        let t = Table::parse("a\n1\nNaN\n", Path::new("t.csv")).unwrap();
+        assert_eq!(e, "t:1: no column `c`");
+        let t = Table::parse("a\n1\nNaN\n", Path::new("t")).unwrap();
         let e = t.numbers("a").unwrap_err().to_string();
-        assert_eq!(e, "t.csv:3: `a` is no finite number");
-        assert!(Table::parse("\n", Path::new("e.csv")).is_err());
+        assert_eq!(e, "t:3: `a` is no finite number");
+        assert!(Table::parse("\n", Path::new("e")).is_err());
     }
 }

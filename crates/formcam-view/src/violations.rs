@@ -11,6 +11,7 @@
 
 use std::path::{Path, PathBuf};
 
+use formcam_results::names;
 use formcam_sim::{AxisLimits, MandrelCheck, check_text_with, check_timeline};
 use serde::Serialize;
 use serde_json::Value;
@@ -67,10 +68,10 @@ impl Violations {
     /// list, naming the file.
     pub fn of(folder: &RunFolder, tl: &Timeline, report: bool) -> Result<Self, ViewError> {
         let limits = AxisLimits::of(tl.machine());
-        let path = folder.root.join("check.json");
+        let path = folder.root.join(names::CHECK);
         let ran = if report && path.is_file() {
             Ran {
-                source: "check.json",
+                source: names::CHECK,
                 found: read_report(&path)?,
                 checks: Vec::new(),
                 unchecked: None,

@@ -3,6 +3,8 @@
 use crate::vec3::{V3, dot, norm, scale, sub, unit};
 use crate::{CorrectError, MeasureError, MeasureProblem};
 
+mod dmis;
+
 /// One measured point.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MeasuredPoint {
@@ -263,134 +265,11 @@ impl Measurements {
     /// `UNITS/INCH` scales to mm; `$$` comments and `$` continuations are
     /// understood; other statements are passed over.
     pub fn from_dmis(text: &str) -> Result<Self, CorrectError> {
-        let mut nominal: Vec<(String, usize, V3, Option<V3>)> = Vec::new();
-        let mut actual: std::collections::HashMap<String, (usize, V3)> =
-            std::collections::HashMap::new();
-        let mut unit_scale = 1.0;
-        let mut stmt = String::new();
-        let mut stmt_line = 0;
-        for (i, raw) in text.lines().enumerate() {
-            let line = i + 1;
-            let l = match raw.find("$$") {
-                Some(k) => &raw[..k],
-                None => raw,
-            }
-            .trim();
-            if stmt.is_empty() {
-                stmt_line = line;
-            }
-            if let Some(c) = l.strip_suffix('$') {
-                stmt.push_str(c);
-                continue;
-            }
-            stmt.push_str(l);
-            let s = std::mem::take(&mut stmt);
-            let u = s.to_ascii_uppercase();
-            if let Some(rest) = u.strip_prefix("UNITS/") {
-                let unit = rest.split(',').next().unwrap_or("").trim();
-                unit_scale = match unit {
-                    "MM" => 1.0,
-                    "INCH" => 25.4,
-                    "CM" => 10.0,
-                    "METER" => 1000.0,
-                    other => {
-                        return Err(bad(stmt_line, MeasureProblem::Unit { unit: other.into() }));
-                    }
-                };
-                continue;
-            }
-            let (is_actual, rest) = if let Some(r) = u.strip_prefix("FA(") {
-                (true, r)
-            } else if let Some(r) = u.strip_prefix("F(") {
-                (false, r)
-            } else {
-                continue;
-            };
-            let Some(close) = rest.find(')') else {
-                return Err(bad(stmt_line, MeasureProblem::OpenLabel));
-            };
-            let label = s[s.find('(').map_or(0, |k| k + 1)..][..close]
-                .trim()
-                .to_string();
-            let def = rest[close + 1..].trim_start();
-            let Some(def) = def.strip_prefix('=') else {
-                continue;
-            };
-            let def = def.trim();
-            if !def.starts_with("FEAT/POINT") {
-                continue;
-            }
-            let parts: Vec<&str> = def.split(',').map(str::trim).collect();
-            if parts.get(1) != Some(&"CART") {
-                return Err(bad(stmt_line, MeasureProblem::NotCartesian { label }));
-            }
-            let num = |k: usize| -> Result<f64, CorrectError> {
-                let s = parts.get(k).ok_or_else(|| {
-                    bad(
-                        stmt_line,
-                        MeasureProblem::FewCoordinates {
-                            label: label.clone(),
-                        },
-                    )
-                })?;
-                let v: f64 = s.parse().map_err(|_| {
-                    bad(
-                        stmt_line,
-                        MeasureProblem::FeatureNotANumber {
-                            label: label.clone(),
-                            text: (*s).into(),
-                        },
-                    )
-                })?;
-                if !v.is_finite() {
-                    return Err(bad(
-                        stmt_line,
-                        MeasureProblem::FeatureNotFinite {
-                            label: label.clone(),
-                            text: (*s).into(),
-                        },
-                    ));
-                }
-                Ok(v)
-            };
-            let p = scale([num(2)?, num(3)?, num(4)?], unit_scale);
-            let n = if parts.len() >= 8 {
-                let n = [num(5)?, num(6)?, num(7)?];
-                (norm(n) > 1e-9).then(|| unit(n))
-            } else {
-                None
-            };
-            if is_actual {
-                if actual.insert(label.clone(), (stmt_line, p)).is_some() {
-                    return Err(bad(stmt_line, MeasureProblem::ActualTwice { label }));
-                }
-            } else {
-                nominal.push((label, stmt_line, p, n));
-            }
+        let mut features = dmis::DmisFeatures::new();
+        for (line, statement) in dmis::dmis_statements(text) {
+            features.read(line, &statement)?;
         }
-        let mut m = Measurements::default();
-        for (label, line, p, n) in nominal {
-            let Some(&(_, a)) = actual.get(&label) else {
-                return Err(bad(line, MeasureProblem::NoMeasuredFeature { label }));
-            };
-            let Some(k) = label.rfind(['_', '.', '-']) else {
-                return Err(bad(line, MeasureProblem::LabelName { label }));
-            };
-            m.push(
-                label[..k].to_string(),
-                MeasuredPoint {
-                    point: label[k + 1..].to_string(),
-                    nominal: p,
-                    actual: a,
-                    normal: n,
-                },
-                line,
-            )?;
-        }
-        if m.is_empty() {
-            return Err(MeasureError::NoFeatures.into());
-        }
-        m.finish()
+        features.measurements()
     }
 
     fn push(&mut self, section: String, p: MeasuredPoint, line: usize) -> Result<(), CorrectError> {

@@ -149,6 +149,41 @@ pub fn dress(spec: &DressSpec) -> Result<Dressing, DressError> {
 /// [`DressError::Cancelled`] when it asks to stop.
 pub fn dress_with(spec: &DressSpec, progress: &dyn Progress) -> Result<Dressing, DressError> {
     let profile = Profile::new(&spec.wheel)?;
+    check_tilt(&profile)?;
+    check_diameter(spec.wheel_diameter)?;
+    let dresser = Dresser::new(&spec.dresser, &profile)?;
+    let h = checked_step(spec, &dresser)?;
+    let feed_spec = spec.feed.check()?;
+    let chord = h / 2.0;
+    let initial = match &spec.allowance {
+        Allowance::Depth(depth) => {
+            let depth = checked_depth(&profile, *depth)?;
+            offset_contour(&profile, depth, chord)
+        }
+        Allowance::Contour(points) => user_contour(&profile, points.clone(), h)?,
+    };
+    let passes = dresser_path(&profile, &dresser, h).to_vec();
+    let forming = simulate_with(&dresser, &passes, &initial, chord, progress)?;
+    check_gouge(&profile, &dresser, &forming)?;
+    let feed = plan_feed(&forming.steps, &feed_spec);
+    let (program, step_block) =
+        dressing_program(&spec.name, &profile, &dresser, &passes, &forming, &feed)?;
+    Ok(Dressing {
+        profile,
+        dresser,
+        wheel_diameter: spec.wheel_diameter,
+        step: h,
+        passes,
+        forming,
+        feed_spec,
+        feed,
+        program,
+        step_block,
+    })
+}
+
+/// The flanks may not rise toward the wheel's edges.
+fn check_tilt(profile: &Profile) -> Result<(), DressError> {
     let tilt = profile.spec().flank_tilt;
     if tilt < 0.0 {
         return Err(DressError::field(
@@ -158,7 +193,12 @@ pub fn dress_with(spec: &DressSpec, progress: &dyn Progress) -> Result<Dressing,
              (and the dresser's periphery would cut into them): dressing needs a tilt of 0° or more",
         ));
     }
-    if let Some(d) = spec.wheel_diameter {
+    Ok(())
+}
+
+/// The wheel's diameter, where given, finite and positive.
+fn check_diameter(diameter: Option<f64>) -> Result<(), DressError> {
+    if let Some(d) = diameter {
         let d = finite("wheel.diameter", d, " mm")?;
         if d <= 0.0 {
             return Err(DressError::field(
@@ -168,7 +208,12 @@ pub fn dress_with(spec: &DressSpec, progress: &dyn Progress) -> Result<Dressing,
             ));
         }
     }
-    let dresser = Dresser::new(&spec.dresser, &profile)?;
+    Ok(())
+}
+
+/// The step `h`, checked: at least [`STEP_MIN`], at most half the smaller
+/// corner radius, and not too much work.
+fn checked_step(spec: &DressSpec, dresser: &Dresser) -> Result<f64, DressError> {
     let h = finite("process.step", spec.step, " mm")?;
     let h_max = 0.5 * dresser.r_left.min(dresser.r_right);
     if h_max < STEP_MIN {
@@ -212,64 +257,45 @@ pub fn dress_with(spec: &DressSpec, progress: &dyn Progress) -> Result<Dressing,
             ),
         ));
     }
-    let feed_spec = spec.feed.check()?;
-    let chord = h / 2.0;
-    let initial = match &spec.allowance {
-        Allowance::Depth(depth) => {
-            let depth = finite("process.depth", *depth, " mm")?;
-            if depth <= 0.0 {
-                return Err(DressError::field(
-                    "process.depth",
-                    mm(depth),
-                    "must be positive",
-                ));
-            }
-            let height = profile.height();
-            if depth >= height {
-                return Err(DressError::field(
-                    "process.depth",
-                    mm(depth),
-                    format!(
-                        "larger than the wheel's profile (its height from the edges to the apex \
-                         is {})",
-                        mm(height)
-                    ),
-                ));
-            }
-            let r2 = profile.min_concave_radius();
-            if depth >= r2 {
-                return Err(DressError::field(
-                    "process.depth",
-                    mm(depth),
-                    format!(
-                        "must be less than the fillet radius wheel.r2 = {}: the allowance's offset \
-                         would lose the fillet",
-                        mm(r2)
-                    ),
-                ));
-            }
-            offset_contour(&profile, depth, chord)
-        }
-        Allowance::Contour(points) => user_contour(&profile, points.clone(), h)?,
-    };
-    let passes = dresser_path(&profile, &dresser, h).to_vec();
-    let forming = simulate_with(&dresser, &passes, &initial, chord, progress)?;
-    check_gouge(&profile, &dresser, &forming)?;
-    let feed = plan_feed(&forming.steps, &feed_spec);
-    let (program, step_block) =
-        dressing_program(&spec.name, &profile, &dresser, &passes, &forming, &feed)?;
-    Ok(Dressing {
-        profile,
-        dresser,
-        wheel_diameter: spec.wheel_diameter,
-        step: h,
-        passes,
-        forming,
-        feed_spec,
-        feed,
-        program,
-        step_block,
-    })
+    Ok(h)
+}
+
+/// The allowance's depth, checked: positive, less than the profile's height
+/// and than its fillet radius.
+fn checked_depth(profile: &Profile, depth: f64) -> Result<f64, DressError> {
+    let depth = finite("process.depth", depth, " mm")?;
+    if depth <= 0.0 {
+        return Err(DressError::field(
+            "process.depth",
+            mm(depth),
+            "must be positive",
+        ));
+    }
+    let height = profile.height();
+    if depth >= height {
+        return Err(DressError::field(
+            "process.depth",
+            mm(depth),
+            format!(
+                "larger than the wheel's profile (its height from the edges to the apex \
+                 is {})",
+                mm(height)
+            ),
+        ));
+    }
+    let r2 = profile.min_concave_radius();
+    if depth >= r2 {
+        return Err(DressError::field(
+            "process.depth",
+            mm(depth),
+            format!(
+                "must be less than the fillet radius wheel.r2 = {}: the allowance's offset \
+                 would lose the fillet",
+                mm(r2)
+            ),
+        ));
+    }
+    Ok(depth)
 }
 
 /// A user's contour, checked and clipped to the wheel's width.

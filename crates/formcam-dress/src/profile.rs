@@ -119,71 +119,23 @@ impl Profile {
     /// Checks `spec` and builds the profile. Errors name the job field
     /// (`wheel.r1`, `wheel.contact_angle_deg`, ...) and the allowed range.
     pub fn new(spec: &WheelSpec) -> Result<Profile, DressError> {
-        let s = *spec;
-        let rs = finite("wheel.ball_radius", s.ball_radius, " mm")?;
-        let a = finite("wheel.contact_angle_deg", s.contact_angle.to_degrees(), "°")?.to_radians();
-        let r1 = finite("wheel.r1", s.r1, " mm")?;
-        let r2 = finite("wheel.r2", s.r2, " mm")?;
-        let width = finite("wheel.width", s.width, " mm")?;
-        let tilt = finite("wheel.flank_tilt_deg", s.flank_tilt.to_degrees(), "°")?.to_radians();
-        let a2 = finite("wheel.arc_angle_deg", s.arc_angle.to_degrees(), "°")?.to_radians();
-        if rs <= 0.0 {
-            return Err(DressError::field(
-                "wheel.ball_radius",
-                mm(rs),
-                "must be positive",
-            ));
-        }
-        if !(a > 0.0 && a < PI / 2.0) {
-            return Err(DressError::field(
-                "wheel.contact_angle_deg",
-                deg(s.contact_angle.to_degrees()),
-                "must be in (0°, 90°)",
-            ));
-        }
-        if r1 <= rs {
-            return Err(DressError::field(
-                "wheel.r1",
-                mm(r1),
-                format!(
-                    "the flank arc must be larger than the ball (wheel.ball_radius = {}); usually \
-                     R1 = 1.03..1.05 Rs",
-                    mm(rs)
-                ),
-            ));
-        }
-        if r2 <= 0.0 {
-            return Err(DressError::field("wheel.r2", mm(r2), "must be positive"));
-        }
-        if width <= 0.0 {
-            return Err(DressError::field(
-                "wheel.width",
-                mm(width),
-                "must be positive",
-            ));
-        }
-        if !(a2 > 0.0 && a2 < a) {
-            return Err(DressError::field(
-                "wheel.arc_angle_deg",
-                deg(a2.to_degrees()),
-                format!(
-                    "the flank arc must end below the contact point: the arc angle must be in \
-                     (0°, {}) (the contact angle)",
-                    deg(a.to_degrees())
-                ),
-            ));
-        }
-        if !(tilt > -PI / 2.0 && tilt < PI / 2.0 - a2) {
-            return Err(DressError::field(
-                "wheel.flank_tilt_deg",
-                deg(tilt.to_degrees()),
-                format!(
-                    "must be in (-90°, {}) (90° less the arc angle) for the fillet to turn from \
-                     the flank arc to the flank",
-                    deg(90.0 - a2.to_degrees())
-                ),
-            ));
-        }
+        let checked = finite_spec(spec)?;
+        check_ranges(&checked, spec.contact_angle)?;
+        Profile::build(checked)
+    }
+
+    /// The profile of the checked `spec`: the pieces' centres and ends, the
+    /// fillet within the width.
+    fn build(spec: WheelSpec) -> Result<Profile, DressError> {
+        let WheelSpec {
+            ball_radius: rs,
+            contact_angle: a,
+            r1,
+            r2,
+            width,
+            flank_tilt: tilt,
+            arc_angle: a2,
+        } = spec;
         let u = Point::polar(a);
         let o1 = u * (rs - r1);
         // The apex: the flank arc crosses the y axis.
@@ -227,15 +179,7 @@ impl Profile {
             Piece::Line { from: c, to: d },
         ];
         Ok(Profile {
-            spec: WheelSpec {
-                ball_radius: rs,
-                contact_angle: a,
-                r1,
-                r2,
-                width,
-                flank_tilt: tilt,
-                arc_angle: a2,
-            },
+            spec,
             o1,
             o2,
             apex,
@@ -385,6 +329,93 @@ impl Profile {
             apex_angle,
         }
     }
+}
+
+/// `spec` with every value finite (the angles through degrees, as the job
+/// gives them).
+fn finite_spec(s: &WheelSpec) -> Result<WheelSpec, DressError> {
+    let ball_radius = finite("wheel.ball_radius", s.ball_radius, " mm")?;
+    let contact_angle =
+        finite("wheel.contact_angle_deg", s.contact_angle.to_degrees(), "°")?.to_radians();
+    let r1 = finite("wheel.r1", s.r1, " mm")?;
+    let r2 = finite("wheel.r2", s.r2, " mm")?;
+    let width = finite("wheel.width", s.width, " mm")?;
+    let flank_tilt = finite("wheel.flank_tilt_deg", s.flank_tilt.to_degrees(), "°")?.to_radians();
+    let arc_angle = finite("wheel.arc_angle_deg", s.arc_angle.to_degrees(), "°")?.to_radians();
+    Ok(WheelSpec {
+        ball_radius,
+        contact_angle,
+        r1,
+        r2,
+        width,
+        flank_tilt,
+        arc_angle,
+    })
+}
+
+/// Each value of the finite `s` within its range; `given_contact_angle` is
+/// the contact angle as given, named in its error.
+fn check_ranges(s: &WheelSpec, given_contact_angle: f64) -> Result<(), DressError> {
+    let (rs, a, a2, tilt) = (s.ball_radius, s.contact_angle, s.arc_angle, s.flank_tilt);
+    let (r1, r2, width) = (s.r1, s.r2, s.width);
+    if rs <= 0.0 {
+        return Err(DressError::field(
+            "wheel.ball_radius",
+            mm(rs),
+            "must be positive",
+        ));
+    }
+    if !(a > 0.0 && a < PI / 2.0) {
+        return Err(DressError::field(
+            "wheel.contact_angle_deg",
+            deg(given_contact_angle.to_degrees()),
+            "must be in (0°, 90°)",
+        ));
+    }
+    if r1 <= rs {
+        return Err(DressError::field(
+            "wheel.r1",
+            mm(r1),
+            format!(
+                "the flank arc must be larger than the ball (wheel.ball_radius = {}); usually \
+                 R1 = 1.03..1.05 Rs",
+                mm(rs)
+            ),
+        ));
+    }
+    if r2 <= 0.0 {
+        return Err(DressError::field("wheel.r2", mm(r2), "must be positive"));
+    }
+    if width <= 0.0 {
+        return Err(DressError::field(
+            "wheel.width",
+            mm(width),
+            "must be positive",
+        ));
+    }
+    if !(a2 > 0.0 && a2 < a) {
+        return Err(DressError::field(
+            "wheel.arc_angle_deg",
+            deg(a2.to_degrees()),
+            format!(
+                "the flank arc must end below the contact point: the arc angle must be in \
+                 (0°, {}) (the contact angle)",
+                deg(a.to_degrees())
+            ),
+        ));
+    }
+    if !(tilt > -PI / 2.0 && tilt < PI / 2.0 - a2) {
+        return Err(DressError::field(
+            "wheel.flank_tilt_deg",
+            deg(tilt.to_degrees()),
+            format!(
+                "must be in (-90°, {}) (90° less the arc angle) for the fillet to turn from \
+                 the flank arc to the flank",
+                deg(90.0 - a2.to_degrees())
+            ),
+        ));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -44,6 +44,32 @@ pub(crate) fn dressing_program(
     forming: &Forming,
     feed: &FeedPlan,
 ) -> Result<(Program, Vec<usize>), DressError> {
+    let program = headed_program(name, profile, dresser, feed);
+    let top = forming
+        .initial
+        .points()
+        .iter()
+        .map(|q| q.y)
+        .fold(f64::NEG_INFINITY, f64::max);
+    // Point A is on the periphery's line: this keeps the dresser clear.
+    let safe = top + CLEARANCE;
+    let mut blocks = Blocks {
+        program,
+        feed: &feed.feed,
+        k: 0,
+        step_block: Vec::with_capacity(feed.feed.len()),
+        linear: 0,
+    };
+    for (pi, pass) in passes.iter().enumerate() {
+        blocks.pass(pi, pass, dresser, safe);
+    }
+    blocks.program.validate()?;
+    Ok((blocks.program, blocks.step_block))
+}
+
+/// The program without blocks: its axes, plane and header (the wheel, the
+/// dresser, the axes, the feed's target and range).
+fn headed_program(name: &str, profile: &Profile, dresser: &Dresser, feed: &FeedPlan) -> Program {
     let mut p = Program::new(
         if name.is_empty() { "DRESS" } else { name },
         vec![AxisSpec::linear("Z"), AxisSpec::linear("X")],
@@ -74,88 +100,123 @@ pub(crate) fn dressing_program(
             num(feed.feed.iter().copied().fold(f64::NEG_INFINITY, f64::max))
         ),
     ];
-    let top = forming
-        .initial
-        .points()
-        .iter()
-        .map(|q| q.y)
-        .fold(f64::NEG_INFINITY, f64::max);
-    // Point A is on the periphery's line: this keeps the dresser clear.
-    let safe = top + CLEARANCE;
-    let mut k = 0;
-    let mut step_block = Vec::with_capacity(feed.feed.len());
-    let mut linear = 0usize;
-    for (pi, pass) in passes.iter().enumerate() {
+    p
+}
+
+/// The program as written so far: the feed of each step, the next step's
+/// index `k`, for each step written the linear block that ends it, and the
+/// count of linear blocks.
+struct Blocks<'a> {
+    program: Program,
+    feed: &'a [f64],
+    k: usize,
+    step_block: Vec<usize>,
+    linear: usize,
+}
+
+/// A pass being written: the time (min) and count of steps not yet written,
+/// the last step's end, where the last written block starts, that block's
+/// start and time, and where it prints.
+struct PassSteps {
+    pending: f64,
+    waiting: usize,
+    prev: Point,
+    from: Point,
+    block: Option<(Point, f64)>,
+    last_printed: (i64, i64),
+}
+
+impl Blocks<'_> {
+    /// Pass `pi`: a rapid move above its start and down to it, a block per
+    /// step that moves, the steps left merged, a rapid move up.
+    fn pass(&mut self, pi: usize, pass: &Pass, dresser: &Dresser, safe: f64) {
         let Some(first) = pass.points.first() else {
-            continue;
+            return;
         };
         let a = first.reference;
-        p.blocks
+        self.program
+            .blocks
             .push(Block::rapid(vec![a.x, safe]).with_comment(format!(
                 "pass {}: the {} half, corner radius {}",
                 pi + 1,
                 pass.side.name(),
                 num(dresser.radius(pass.side))
             )));
-        p.blocks.push(Block::rapid(vec![a.x, a.y]));
-        // The time (min) and count of steps not yet written, where the last
-        // written block starts, its time, and where it prints.
-        let (mut pending, mut waiting) = (0.0, 0usize);
-        let mut prev = a;
-        let mut from = a;
-        let mut block: Option<(Point, f64)> = None;
-        let mut last_printed = (printed(a.x), printed(a.y));
+        self.program.blocks.push(Block::rapid(vec![a.x, a.y]));
+        let mut steps = PassSteps {
+            pending: 0.0,
+            waiting: 0,
+            prev: a,
+            from: a,
+            block: None,
+            last_printed: (printed(a.x), printed(a.y)),
+        };
         for q in &pass.points[1..] {
-            let r = q.reference;
-            pending += r.distance(prev) / feed.feed[k];
-            prev = r;
-            k += 1;
-            waiting += 1;
-            let here = (printed(r.x), printed(r.y));
-            if here == last_printed {
-                continue;
-            }
-            let length = r.distance(from);
-            p.blocks.push(Block::linear(
-                vec![r.x, r.y],
-                Feed::PerMinute(length / pending),
-            ));
-            step_block.extend(std::iter::repeat_n(linear, waiting));
-            block = Some((from, pending));
-            linear += 1;
-            (pending, waiting) = (0.0, 0);
-            from = r;
-            last_printed = here;
+            self.step(&mut steps, q.reference);
         }
-        if waiting > 0 {
-            // The pass ends where its last block prints: that block goes on
-            // to the end, with the time of the steps after it.
-            match (block, p.blocks.last_mut()) {
-                (Some((start, time)), Some(b)) => {
-                    let time = time + pending;
-                    b.target = vec![prev.x, prev.y];
-                    b.feed = Feed::PerMinute(prev.distance(start) / time);
-                    step_block.extend(std::iter::repeat_n(linear - 1, waiting));
-                }
-                _ => {
-                    // The whole pass prints at one place: one block anyway.
-                    let length = prev.distance(a);
-                    let f = if pending > 0.0 && length > 0.0 {
-                        length / pending
-                    } else {
-                        feed.feed[k - 1]
-                    };
-                    p.blocks
-                        .push(Block::linear(vec![prev.x, prev.y], Feed::PerMinute(f)));
-                    step_block.extend(std::iter::repeat_n(linear, waiting));
-                    linear += 1;
-                }
-            }
+        if steps.waiting > 0 {
+            self.pass_end(&steps, a);
         }
         if let Some(last) = pass.points.last() {
-            p.blocks.push(Block::rapid(vec![last.reference.x, safe]));
+            self.program
+                .blocks
+                .push(Block::rapid(vec![last.reference.x, safe]));
         }
     }
-    p.validate()?;
-    Ok((p, step_block))
+
+    /// The step to `r`: a linear block when it prints elsewhere than the
+    /// last one, with the time of the steps it ends.
+    fn step(&mut self, st: &mut PassSteps, r: Point) {
+        st.pending += r.distance(st.prev) / self.feed[self.k];
+        st.prev = r;
+        self.k += 1;
+        st.waiting += 1;
+        let here = (printed(r.x), printed(r.y));
+        if here == st.last_printed {
+            return;
+        }
+        let length = r.distance(st.from);
+        self.program.blocks.push(Block::linear(
+            vec![r.x, r.y],
+            Feed::PerMinute(length / st.pending),
+        ));
+        self.step_block
+            .extend(std::iter::repeat_n(self.linear, st.waiting));
+        st.block = Some((st.from, st.pending));
+        self.linear += 1;
+        (st.pending, st.waiting) = (0.0, 0);
+        st.from = r;
+        st.last_printed = here;
+    }
+
+    /// The steps left at the end of a pass that started at `a`.
+    fn pass_end(&mut self, st: &PassSteps, a: Point) {
+        let (pending, waiting, prev) = (st.pending, st.waiting, st.prev);
+        // The pass ends where its last block prints: that block goes on
+        // to the end, with the time of the steps after it.
+        match (st.block, self.program.blocks.last_mut()) {
+            (Some((start, time)), Some(b)) => {
+                let time = time + pending;
+                b.target = vec![prev.x, prev.y];
+                b.feed = Feed::PerMinute(prev.distance(start) / time);
+                self.step_block
+                    .extend(std::iter::repeat_n(self.linear - 1, waiting));
+            }
+            _ => {
+                // The whole pass prints at one place: one block anyway.
+                let length = prev.distance(a);
+                let f = if pending > 0.0 && length > 0.0 {
+                    length / pending
+                } else {
+                    self.feed[self.k - 1]
+                };
+                self.program
+                    .blocks
+                    .push(Block::linear(vec![prev.x, prev.y], Feed::PerMinute(f)));
+                self.step_block
+                    .extend(std::iter::repeat_n(self.linear, waiting));
+                self.linear += 1;
+            }
+        }
+    }
 }

@@ -3,6 +3,7 @@
 
 use formcam_correct::simulate::LoopResult;
 use formcam_correct::{Grid, Measurements, NodeCorrection, Placement};
+use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::{PlotError, Series, panels_svg, svg_err, tick_label};
@@ -70,7 +71,46 @@ pub fn displacement_svg(
     corrections: &[NodeCorrection],
     grid: &Grid,
 ) -> Result<Vec<u8>, PlotError> {
-    let err = svg_err("displacement.svg");
+    let pts = node_points(nodes, corrections, grid);
+    // The colour scale's half range: the largest displacement, at least
+    // 1 um (a map of nothing moved is white, not noise).
+    let lim = pts.iter().fold(1e-3f64, |m, p| m.max(p.2.abs()));
+    let (xr, yr) = plan_ranges(&pts, grid);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (1000, 800)).into_drawing_area();
+        root.fill(&WHITE).map_err(displacement_err)?;
+        let root = root
+            .titled(
+                "Node displacement along the surface normal",
+                ("sans-serif", 18),
+            )
+            .map_err(displacement_err)?;
+        let (map, bar) = root.split_horizontally(880);
+        draw_map(&map, &pts, grid, lim, xr, yr)?;
+        draw_colour_bar(&bar, lim)?;
+        root.present().map_err(displacement_err)?;
+    }
+    Ok(svg.into_bytes())
+}
+
+/// A node as drawn: `x, y`, its displacement along the surface normal and
+/// where it lies.
+type NodePoint = (f64, f64, f64, Placement);
+
+/// A part of the displacement plot's drawing.
+type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
+
+/// A drawing error of the displacement plot.
+fn displacement_err<E: std::error::Error + Send + Sync + 'static>(
+    e: DrawingAreaErrorKind<E>,
+) -> PlotError {
+    svg_err("displacement.svg")(e.into())
+}
+
+/// Every `step`-th node (at most 20 000) with its displacement along the
+/// grid's normal at its facet.
+fn node_points(nodes: &[[f64; 3]], corrections: &[NodeCorrection], grid: &Grid) -> Vec<NodePoint> {
     let step = nodes.len().div_ceil(20_000).max(1);
     let mut pts = Vec::new();
     for (p, c) in nodes.iter().zip(corrections).step_by(step) {
@@ -84,9 +124,12 @@ pub fn displacement_svg(
             c.placement,
         ));
     }
-    // The colour scale's half range: the largest displacement, at least
-    // 1 um (a map of nothing moved is white, not noise).
-    let lim = pts.iter().fold(1e-3f64, |m, p| m.max(p.2.abs()));
+    pts
+}
+
+/// The `x` and `y` ranges of the map: the nodes and the measured points,
+/// padded by 3 % of the larger span (the unit square when there are none).
+fn plan_ranges(pts: &[NodePoint], grid: &Grid) -> ((f64, f64), (f64, f64)) {
     let (mut x0, mut x1, mut y0, mut y1) = (
         f64::INFINITY,
         f64::NEG_INFINITY,
@@ -107,110 +150,113 @@ pub fn displacement_svg(
         (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
     }
     let pad = 0.03 * (x1 - x0).max(y1 - y0).max(1e-9);
-    let colour = |d: f64| {
-        let f = (d / lim).clamp(-1.0, 1.0);
-        if f >= 0.0 {
-            RGBColor(255, (255.0 * (1.0 - f)) as u8, (255.0 * (1.0 - f)) as u8)
-        } else {
-            RGBColor((255.0 * (1.0 + f)) as u8, (255.0 * (1.0 + f)) as u8, 255)
-        }
-    };
-    let grey = RGBColor(190, 190, 190);
-    let (xr, yr) = ((x0 - pad, x1 + pad), (y0 - pad, y1 + pad));
-    let (fx, fy, fbar) = (
-        tick_label(xr.0, xr.1),
-        tick_label(yr.0, yr.1),
-        tick_label(-lim, lim),
-    );
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (1000, 800)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| err(e.into()))?;
-        let root = root
-            .titled(
-                "Node displacement along the surface normal",
-                ("sans-serif", 18),
-            )
-            .map_err(|e| err(e.into()))?;
-        let (map, bar) = root.split_horizontally(880);
-        let mut chart = ChartBuilder::on(&map)
-            .margin(10)
-            .x_label_area_size(35)
-            .y_label_area_size(60)
-            .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
-            .map_err(|e| err(e.into()))?;
-        chart
-            .configure_mesh()
-            .x_desc("x, mm")
-            .y_desc("y, mm")
-            .x_label_formatter(&fx)
-            .y_label_formatter(&fy)
-            .draw()
-            .map_err(|e| err(e.into()))?;
-        let (unchanged, moved): (Vec<_>, Vec<_>) = pts
-            .iter()
-            .partition(|p| matches!(p.3, Placement::Outside | Placement::Unknown));
-        chart
-            .draw_series(
-                moved
-                    .iter()
-                    .map(|&&(x, y, d, _)| Circle::new((x, y), 2, colour(d).filled())),
-            )
-            .map_err(|e| err(e.into()))?;
-        if !unchanged.is_empty() {
-            chart
-                .draw_series(
-                    unchanged
-                        .iter()
-                        .map(|p| Circle::new((p.0, p.1), 2, grey.filled())),
-                )
-                .map_err(|e| err(e.into()))?
-                .label("node left unchanged (outside the measured area)")
-                .legend(move |(x, y)| Circle::new((x + 10, y), 3, grey.filled()));
-        }
-        chart
-            .draw_series(
-                grid.nominal
-                    .iter()
-                    .map(|q| Circle::new((q[0], q[1]), 2, BLACK.filled())),
-            )
-            .map_err(|e| err(e.into()))?
-            .label("measured point")
-            .legend(|(x, y)| Circle::new((x + 10, y), 3, BLACK.filled()));
-        chart
-            .configure_series_labels()
-            .border_style(BLACK)
-            .background_style(WHITE.mix(0.8))
-            .draw()
-            .map_err(|e| err(e.into()))?;
-        // The colour bar: the displacement each colour stands for.
-        let mut scale = ChartBuilder::on(&bar)
-            .margin_top(10)
-            .margin_bottom(45)
-            .margin_right(5)
-            .y_label_area_size(70)
-            .build_cartesian_2d(0.0..1.0, -lim..lim)
-            .map_err(|e| err(e.into()))?;
-        scale
-            .configure_mesh()
-            .disable_x_mesh()
-            .disable_x_axis()
-            .disable_y_mesh()
-            .y_desc("displacement, mm")
-            .y_label_formatter(&fbar)
-            .draw()
-            .map_err(|e| err(e.into()))?;
-        let steps = 100;
-        scale
-            .draw_series((0..steps).map(|k| {
-                let a = -lim + 2.0 * lim * k as f64 / steps as f64;
-                let b = -lim + 2.0 * lim * (k + 1) as f64 / steps as f64;
-                Rectangle::new([(0.0, a), (1.0, b)], colour(0.5 * (a + b)).filled())
-            }))
-            .map_err(|e| err(e.into()))?;
-        root.present().map_err(|e| err(e.into()))?;
+    ((x0 - pad, x1 + pad), (y0 - pad, y1 + pad))
+}
+
+/// The colour of displacement `d` on the scale `-lim..lim`: red up, blue
+/// down, white at 0.
+fn colour(d: f64, lim: f64) -> RGBColor {
+    let f = (d / lim).clamp(-1.0, 1.0);
+    if f >= 0.0 {
+        RGBColor(255, (255.0 * (1.0 - f)) as u8, (255.0 * (1.0 - f)) as u8)
+    } else {
+        RGBColor((255.0 * (1.0 + f)) as u8, (255.0 * (1.0 + f)) as u8, 255)
     }
-    Ok(svg.into_bytes())
+}
+
+/// The map: the moved nodes coloured, the unchanged ones grey, the measured
+/// points black, and the legend.
+fn draw_map(
+    map: &Area,
+    pts: &[NodePoint],
+    grid: &Grid,
+    lim: f64,
+    xr: (f64, f64),
+    yr: (f64, f64),
+) -> Result<(), PlotError> {
+    let grey = RGBColor(190, 190, 190);
+    let (fx, fy) = (tick_label(xr.0, xr.1), tick_label(yr.0, yr.1));
+    let mut chart = ChartBuilder::on(map)
+        .margin(10)
+        .x_label_area_size(35)
+        .y_label_area_size(60)
+        .build_cartesian_2d(xr.0..xr.1, yr.0..yr.1)
+        .map_err(displacement_err)?;
+    chart
+        .configure_mesh()
+        .x_desc("x, mm")
+        .y_desc("y, mm")
+        .x_label_formatter(&fx)
+        .y_label_formatter(&fy)
+        .draw()
+        .map_err(displacement_err)?;
+    let (unchanged, moved): (Vec<_>, Vec<_>) = pts
+        .iter()
+        .partition(|p| matches!(p.3, Placement::Outside | Placement::Unknown));
+    chart
+        .draw_series(
+            moved
+                .iter()
+                .map(|&&(x, y, d, _)| Circle::new((x, y), 2, colour(d, lim).filled())),
+        )
+        .map_err(displacement_err)?;
+    if !unchanged.is_empty() {
+        chart
+            .draw_series(
+                unchanged
+                    .iter()
+                    .map(|p| Circle::new((p.0, p.1), 2, grey.filled())),
+            )
+            .map_err(displacement_err)?
+            .label("node left unchanged (outside the measured area)")
+            .legend(move |(x, y)| Circle::new((x + 10, y), 3, grey.filled()));
+    }
+    chart
+        .draw_series(
+            grid.nominal
+                .iter()
+                .map(|q| Circle::new((q[0], q[1]), 2, BLACK.filled())),
+        )
+        .map_err(displacement_err)?
+        .label("measured point")
+        .legend(|(x, y)| Circle::new((x + 10, y), 3, BLACK.filled()));
+    chart
+        .configure_series_labels()
+        .border_style(BLACK)
+        .background_style(WHITE.mix(0.8))
+        .draw()
+        .map_err(displacement_err)?;
+    Ok(())
+}
+
+/// The colour bar: the displacement each colour stands for.
+fn draw_colour_bar(bar: &Area, lim: f64) -> Result<(), PlotError> {
+    let fbar = tick_label(-lim, lim);
+    let mut scale = ChartBuilder::on(bar)
+        .margin_top(10)
+        .margin_bottom(45)
+        .margin_right(5)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0.0..1.0, -lim..lim)
+        .map_err(displacement_err)?;
+    scale
+        .configure_mesh()
+        .disable_x_mesh()
+        .disable_x_axis()
+        .disable_y_mesh()
+        .y_desc("displacement, mm")
+        .y_label_formatter(&fbar)
+        .draw()
+        .map_err(displacement_err)?;
+    let steps = 100;
+    scale
+        .draw_series((0..steps).map(|k| {
+            let a = -lim + 2.0 * lim * k as f64 / steps as f64;
+            let b = -lim + 2.0 * lim * (k + 1) as f64 / steps as f64;
+            Rectangle::new([(0.0, a), (1.0, b)], colour(0.5 * (a + b), lim).filled())
+        }))
+        .map_err(displacement_err)?;
+    Ok(())
 }
 
 /// A named, coloured line of a plot.

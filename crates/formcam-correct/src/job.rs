@@ -20,7 +20,7 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use formcam_nc::Dialect;
+use formcam_nc::{Aliases, Dialect};
 use formcam_schema::{
     Default as Preset, Field, JobSchema, Kind, Range, Repeat, SchemaError, Table, Unit, Value,
     field, validate,
@@ -39,16 +39,16 @@ pub const DEFAULT_ARC_TOLERANCE_MM: f64 = 0.001;
 /// The interpolations' names.
 pub const INTERPOLATIONS: &[&str] = &["bilinear", "bicubic"];
 
-/// The dialects a milling program is read in (names and aliases, any case).
-pub const MILLING_DIALECTS: &[&str] = &[
-    "iso",
-    "fanuc",
-    "sinumerik-840d",
-    "sinumerik",
-    "840d",
-    "linuxcnc",
-    "marlin-xab",
+/// The dialects a milling program is read in.
+const MILLING: [Dialect; 4] = [
+    Dialect::Iso,
+    Dialect::Sinumerik840d,
+    Dialect::LinuxCnc,
+    Dialect::MarlinXab,
 ];
+
+/// The names of [`MILLING`]'s dialects, each with its aliases (any case).
+pub const MILLING_DIALECTS: &[&str] = &Dialect::names_of::<7>(&MILLING, Aliases::Each);
 
 /// A setting of a correction, as errors name it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

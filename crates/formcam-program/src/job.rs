@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use formcam_machine::IkMethod;
 use formcam_machine::Machine;
 use formcam_machine::shipped::{names, shipped};
-use formcam_nc::{Dialect, Template};
+use formcam_nc::{Aliases, Dialect, Template};
 use formcam_schema::{
     Default as Given, EmptyList, JobSchema, Kind, Range, Repeat, SchemaError, Table, Unit, Value,
     field, validate,
@@ -406,17 +406,18 @@ fn line_col(text: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
-/// The names `[post] dialect` takes (the dialects and their aliases).
-const DIALECTS: &[&str] = &[
-    "sinumerik-840d",
-    "iso",
-    "linuxcnc",
-    "marlin-xab",
-    "cldata",
-    "fanuc",
-    "sinumerik",
-    "840d",
-];
+/// The names `[post] dialect` takes: the dialects, the default first, then
+/// their aliases.
+const DIALECTS: &[&str] = &Dialect::names_of::<8>(
+    &[
+        Dialect::Sinumerik840d,
+        Dialect::Iso,
+        Dialect::LinuxCnc,
+        Dialect::MarlinXab,
+        Dialect::Cldata,
+    ],
+    Aliases::Last,
+);
 
 /// The shipped machines' names, as `[machine] name` takes them.
 const MACHINES: &[&str] = &[

@@ -28,7 +28,7 @@ use formcam_schema::{
 use serde::Deserialize;
 
 use crate::error::refused_value;
-use crate::{CorrectError, Given, Options, Rule, Tool};
+use crate::{CorrectError, DEFAULT_GAIN, GAIN_RANGE, Given, MARGIN_RANGE, Options, Rule};
 
 /// The default of the largest plausible deviation and displacement, mm.
 pub const DEFAULT_MAX_DEVIATION_MM: f64 = 5.0;
@@ -184,7 +184,7 @@ impl Settings {
     /// Checks every range against the `[correct]` table's description; the
     /// error names the field ([`CorrectError::Field`]).
     pub fn check(&self) -> Result<(), CorrectError> {
-        check_options(&self.options)?;
+        self.options.validate()?;
         JobField::Noise.check(self.noise_mm)?;
         JobField::MaxDeviation.check(self.max_deviation_mm)?;
         if let Some(m) = self.max_segment_mm {
@@ -196,22 +196,6 @@ impl Settings {
         }
         Ok(())
     }
-}
-
-/// The correction's options against their ranges, named as the job's
-/// fields.
-pub(crate) fn check_options(o: &Options) -> Result<(), CorrectError> {
-    JobField::Gain.check(o.gain)?;
-    if let Tool::Ball { radius } = o.tool
-        && !(radius.is_finite() && radius > 0.0)
-    {
-        return Err(CorrectError::Field {
-            field: JobField::Tool,
-            value: Given::Tool(o.tool),
-            rule: Rule::BallRadius,
-        });
-    }
-    JobField::Margin.check(o.margin_mm)
 }
 
 /// A correction job: the CMM report, the program and the settings.
@@ -384,15 +368,15 @@ pub const CORRECT: Table = Table {
             "gain",
             Kind::Number,
             Unit::None,
-            Some(Range::open_closed(0.0, 2.0)),
-            Preset::Value(Value::Number(1.0)),
+            Some(GAIN_RANGE),
+            Preset::Value(Value::Number(DEFAULT_GAIN)),
             "displacement = −gain × interpolated deviation",
         ),
         field(
             "margin_mm",
             Kind::Number,
             Unit::Mm,
-            NOT_NEGATIVE_MM,
+            Some(MARGIN_RANGE),
             Preset::Value(Value::Number(0.0)),
             "nodes up to this far beyond the measured area are corrected by extrapolation; 0 \
              leaves every node outside unchanged",

@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 use formcam_machine::IkMethod;
 use formcam_machine::Machine;
 use formcam_machine::shipped::{names, shipped};
+use formcam_motion::{DEFAULT_TAU_S, DEFAULT_TOLERANCE_DEG, DEFAULT_TOLERANCE_MM};
 use formcam_nc::{Aliases, Dialect, Template};
 use formcam_schema::{
     Default as Given, EmptyList, JobSchema, Kind, Range, Repeat, SchemaError, Table, Unit, Value,
@@ -476,7 +477,7 @@ pub const MOTION: Table = Table {
             Kind::Number,
             Unit::Mm,
             POSITIVE,
-            Given::Value(Value::Number(0.05)),
+            Given::Value(Value::Number(DEFAULT_TOLERANCE_MM)),
             "linear axes' tolerance of the blocks",
         ),
         field(
@@ -484,7 +485,7 @@ pub const MOTION: Table = Table {
             Kind::Number,
             Unit::Deg,
             POSITIVE,
-            Given::Value(Value::Number(0.05)),
+            Given::Value(Value::Number(DEFAULT_TOLERANCE_DEG)),
             "rotary axes' tolerance",
         ),
         field(
@@ -500,7 +501,7 @@ pub const MOTION: Table = Table {
             Kind::Number,
             Unit::S,
             POSITIVE,
-            Given::Value(Value::Number(0.004)),
+            Given::Value(Value::Number(DEFAULT_TAU_S)),
             "the controller's least block time",
         ),
         field(

@@ -123,8 +123,9 @@ pub const EDGE_TOLERANCE_MM: f64 = 0.01;
 /// Where a node lies relative to the measured area (`inside`,
 /// `extrapolated`, `outside`, `unknown` in the node status file and the
 /// view).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, strum::IntoStaticStr)]
 #[serde(rename_all = "lowercase")]
+#[strum(serialize_all = "lowercase")]
 pub enum Placement {
     /// On the measured area: corrected by interpolation.
     Inside,
@@ -148,12 +149,7 @@ impl Placement {
     /// The word written for it: `inside`, `extrapolated`, `outside`,
     /// `unknown`.
     pub fn name(self) -> &'static str {
-        match self {
-            Self::Inside => "inside",
-            Self::Extrapolated => "extrapolated",
-            Self::Outside => "outside",
-            Self::Unknown => "unknown",
-        }
+        self.into()
     }
 
     /// The placement [`Self::name`] writes as `word`.

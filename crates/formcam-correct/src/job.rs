@@ -28,7 +28,9 @@ use formcam_schema::{
 use serde::Deserialize;
 
 use crate::error::refused_value;
-use crate::{CorrectError, DEFAULT_GAIN, GAIN_RANGE, Given, MARGIN_RANGE, Options, Rule};
+use crate::{
+    CorrectError, DEFAULT_GAIN, GAIN_RANGE, Given, Interpolation, MARGIN_RANGE, Options, Rule,
+};
 
 /// The default of the largest plausible deviation and displacement, mm.
 pub const DEFAULT_MAX_DEVIATION_MM: f64 = 5.0;
@@ -37,7 +39,7 @@ pub const DEFAULT_MAX_DEVIATION_MM: f64 = 5.0;
 pub const DEFAULT_ARC_TOLERANCE_MM: f64 = 0.001;
 
 /// The interpolations' names.
-pub const INTERPOLATIONS: &[&str] = &["bilinear", "bicubic"];
+pub const INTERPOLATIONS: &[&str] = <Interpolation as strum::VariantNames>::VARIANTS;
 
 /// The dialects a milling program is read in.
 const MILLING: [Dialect; 4] = [

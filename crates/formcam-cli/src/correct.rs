@@ -6,8 +6,8 @@
 use std::path::{Path, PathBuf};
 
 use formcam_correct::{
-    CorrectionJob, DEFAULT_ARC_TOLERANCE_MM, DEFAULT_MAX_DEVIATION_MM, Given, Interpolation,
-    MILLING_DIALECTS, Options, Rule, Settings, Tool,
+    CorrectionJob, DEFAULT_ARC_TOLERANCE_MM, DEFAULT_GAIN, DEFAULT_MAX_DEVIATION_MM, Given,
+    Interpolation, MILLING_DIALECTS, Options, Rule, Settings, Tool,
 };
 use formcam_nc::Dialect;
 use formcam_run::{CorrectRunError, History, RunError, RunOutput};
@@ -35,7 +35,7 @@ pub struct CorrectArgs {
     #[arg(short, long)]
     pub output: Option<PathBuf>,
     /// Displacement = -gain x interpolated deviation; allowed (0, 2].
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = DEFAULT_GAIN)]
     pub gain: f64,
     /// `point` (nodes on the surface) or `ball:R` (nodes at the centre of a
     /// ball-end tool of radius R mm) [possible values: point, ball:R].

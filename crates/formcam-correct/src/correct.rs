@@ -6,7 +6,9 @@ use rayon::prelude::*;
 
 use crate::patch::Foot;
 use crate::vec3::{V3, axpy, cross, dot, norm, scale, sub, unit};
-use crate::{CorrectError, Grid, Interpolation, Rule, Surface};
+use formcam_schema::{Range, Unit};
+
+use crate::{CorrectError, Given, Grid, Interpolation, JobField, Rule, Surface};
 
 /// The milling tool, as the program's nodes describe it: `point` or
 /// `ball:R` (R in mm) in job files and on the command line.
@@ -47,6 +49,15 @@ impl std::str::FromStr for Tool {
     }
 }
 
+/// The gain's default: the deviation cancelled.
+pub const DEFAULT_GAIN: f64 = 1.0;
+
+/// The gains allowed, (0, 2].
+pub const GAIN_RANGE: Range = Range::open_closed(0.0, 2.0);
+
+/// The margins allowed, mm: >= 0.
+pub const MARGIN_RANGE: Range = Range::at_least(0.0);
+
 /// Correction options.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Options {
@@ -66,7 +77,7 @@ pub struct Options {
 impl Default for Options {
     fn default() -> Self {
         Self {
-            gain: 1.0,
+            gain: DEFAULT_GAIN,
             tool: Tool::Point,
             interpolation: Interpolation::Bilinear,
             margin_mm: 0.0,
@@ -75,10 +86,32 @@ impl Default for Options {
 }
 
 impl Options {
-    /// Checks the ranges against the `[correct]` job's description; the
-    /// messages name the job's field ([`CorrectError::Field`]).
+    /// Checks the gain against [`GAIN_RANGE`], a ball's radius and the
+    /// margin against [`MARGIN_RANGE`]; the messages name the job's field
+    /// ([`CorrectError::Field`]).
     pub fn validate(&self) -> Result<(), CorrectError> {
-        crate::job::check_options(self)
+        let within = |field, v: f64, range: Range, unit| {
+            if range.contains(v) {
+                Ok(())
+            } else {
+                Err(CorrectError::Field {
+                    field,
+                    value: Given::Number(v),
+                    rule: Rule::Range { range, unit },
+                })
+            }
+        };
+        within(JobField::Gain, self.gain, GAIN_RANGE, Unit::None)?;
+        if let Tool::Ball { radius } = self.tool
+            && !(radius.is_finite() && radius > 0.0)
+        {
+            return Err(CorrectError::Field {
+                field: JobField::Tool,
+                value: Given::Tool(self.tool),
+                rule: Rule::BallRadius,
+            });
+        }
+        within(JobField::Margin, self.margin_mm, MARGIN_RANGE, Unit::Mm)
     }
 }
 
@@ -90,8 +123,9 @@ pub const EDGE_TOLERANCE_MM: f64 = 0.01;
 /// Where a node lies relative to the measured area (`inside`,
 /// `extrapolated`, `outside`, `unknown` in the node status file and the
 /// view).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, strum::IntoStaticStr)]
 #[serde(rename_all = "lowercase")]
+#[strum(serialize_all = "lowercase")]
 pub enum Placement {
     /// On the measured area: corrected by interpolation.
     Inside,
@@ -115,12 +149,7 @@ impl Placement {
     /// The word written for it: `inside`, `extrapolated`, `outside`,
     /// `unknown`.
     pub fn name(self) -> &'static str {
-        match self {
-            Self::Inside => "inside",
-            Self::Extrapolated => "extrapolated",
-            Self::Outside => "outside",
-            Self::Unknown => "unknown",
-        }
+        self.into()
     }
 
     /// The placement [`Self::name`] writes as `word`.

@@ -20,7 +20,7 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use formcam_nc::Dialect;
+use formcam_nc::{Aliases, Dialect};
 use formcam_schema::{
     Default as Preset, Field, JobSchema, Kind, Range, Repeat, SchemaError, Table, Unit, Value,
     field, validate,
@@ -28,7 +28,9 @@ use formcam_schema::{
 use serde::Deserialize;
 
 use crate::error::refused_value;
-use crate::{CorrectError, Given, Options, Rule, Tool};
+use crate::{
+    CorrectError, DEFAULT_GAIN, GAIN_RANGE, Given, Interpolation, MARGIN_RANGE, Options, Rule,
+};
 
 /// The default of the largest plausible deviation and displacement, mm.
 pub const DEFAULT_MAX_DEVIATION_MM: f64 = 5.0;
@@ -37,18 +39,18 @@ pub const DEFAULT_MAX_DEVIATION_MM: f64 = 5.0;
 pub const DEFAULT_ARC_TOLERANCE_MM: f64 = 0.001;
 
 /// The interpolations' names.
-pub const INTERPOLATIONS: &[&str] = &["bilinear", "bicubic"];
+pub const INTERPOLATIONS: &[&str] = <Interpolation as strum::VariantNames>::VARIANTS;
 
-/// The dialects a milling program is read in (names and aliases, any case).
-pub const MILLING_DIALECTS: &[&str] = &[
-    "iso",
-    "fanuc",
-    "sinumerik-840d",
-    "sinumerik",
-    "840d",
-    "linuxcnc",
-    "marlin-xab",
+/// The dialects a milling program is read in.
+const MILLING: [Dialect; 4] = [
+    Dialect::Iso,
+    Dialect::Sinumerik840d,
+    Dialect::LinuxCnc,
+    Dialect::MarlinXab,
 ];
+
+/// The names of [`MILLING`]'s dialects, each with its aliases (any case).
+pub const MILLING_DIALECTS: &[&str] = &Dialect::names_of::<7>(&MILLING, Aliases::Each);
 
 /// A setting of a correction, as errors name it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -184,7 +186,7 @@ impl Settings {
     /// Checks every range against the `[correct]` table's description; the
     /// error names the field ([`CorrectError::Field`]).
     pub fn check(&self) -> Result<(), CorrectError> {
-        check_options(&self.options)?;
+        self.options.validate()?;
         JobField::Noise.check(self.noise_mm)?;
         JobField::MaxDeviation.check(self.max_deviation_mm)?;
         if let Some(m) = self.max_segment_mm {
@@ -196,22 +198,6 @@ impl Settings {
         }
         Ok(())
     }
-}
-
-/// The correction's options against their ranges, named as the job's
-/// fields.
-pub(crate) fn check_options(o: &Options) -> Result<(), CorrectError> {
-    JobField::Gain.check(o.gain)?;
-    if let Tool::Ball { radius } = o.tool
-        && !(radius.is_finite() && radius > 0.0)
-    {
-        return Err(CorrectError::Field {
-            field: JobField::Tool,
-            value: Given::Tool(o.tool),
-            rule: Rule::BallRadius,
-        });
-    }
-    JobField::Margin.check(o.margin_mm)
 }
 
 /// A correction job: the CMM report, the program and the settings.
@@ -384,15 +370,15 @@ pub const CORRECT: Table = Table {
             "gain",
             Kind::Number,
             Unit::None,
-            Some(Range::open_closed(0.0, 2.0)),
-            Preset::Value(Value::Number(1.0)),
+            Some(GAIN_RANGE),
+            Preset::Value(Value::Number(DEFAULT_GAIN)),
             "displacement = −gain × interpolated deviation",
         ),
         field(
             "margin_mm",
             Kind::Number,
             Unit::Mm,
-            NOT_NEGATIVE_MM,
+            Some(MARGIN_RANGE),
             Preset::Value(Value::Number(0.0)),
             "nodes up to this far beyond the measured area are corrected by extrapolation; 0 \
              leaves every node outside unchanged",

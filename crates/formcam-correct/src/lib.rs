@@ -45,8 +45,8 @@ mod vec3;
 
 pub use apply::{Applied, NODE_STATUS_FILE, line_ranges};
 pub use correct::{
-    Corrector, EDGE_TOLERANCE_MM, NodeCorrection, Options, Placement, Tool, Totals,
-    check_displacement,
+    Corrector, DEFAULT_GAIN, EDGE_TOLERANCE_MM, GAIN_RANGE, MARGIN_RANGE, NodeCorrection, Options,
+    Placement, Tool, Totals, check_displacement,
 };
 pub use error::{
     CorrectError, Given, MeasureError, MeasureProblem, ProgramError, Rule, ScenarioError,

@@ -6,8 +6,11 @@ use crate::Grid;
 use crate::vec3::{V3, axpy, cross, dot, sub, unit};
 
 /// How the surface and the deviations are interpolated between measured points.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, strum::IntoStaticStr, strum::VariantNames,
+)]
 #[serde(rename_all = "lowercase")]
+#[strum(serialize_all = "lowercase")]
 pub enum Interpolation {
     /// The bilinear Coons patch per facet (eq. 1, docs/correction.md).
     Bilinear,
@@ -28,10 +31,7 @@ impl Interpolation {
 
     /// The name.
     pub fn name(self) -> &'static str {
-        match self {
-            Self::Bilinear => "bilinear",
-            Self::Bicubic => "bicubic",
-        }
+        self.into()
     }
 }
 

@@ -40,7 +40,10 @@ use serde::Deserialize;
 use crate::error::refused_value;
 use crate::job::INTERPOLATIONS;
 use crate::simulate::{Scenario, Shape};
-use crate::{CorrectError, Given, Interpolation, Options, Rule, ScenarioError, Tool};
+use crate::{
+    CorrectError, DEFAULT_GAIN, GAIN_RANGE, Given, Interpolation, MARGIN_RANGE, Options, Rule,
+    ScenarioError, Tool,
+};
 
 /// A scenario file: the loop to run and the section counts of the spacing
 /// study (none: no study).
@@ -332,7 +335,7 @@ impl ScenarioJob {
             seed: f.cmm.seed,
             iterations: f.rounds.iterations,
             options: Options {
-                gain: f.rounds.gain.unwrap_or(1.0),
+                gain: f.rounds.gain.unwrap_or(DEFAULT_GAIN),
                 tool,
                 interpolation,
                 margin_mm: f.rounds.margin_mm,
@@ -570,15 +573,15 @@ pub const LOOP: Table = Table {
             "gain",
             Kind::Number,
             Unit::None,
-            Some(Range::open_closed(0.0, 2.0)),
-            Preset::Value(Value::Number(1.0)),
+            Some(GAIN_RANGE),
+            Preset::Value(Value::Number(DEFAULT_GAIN)),
             "as for `formcam correct`",
         ),
         field(
             "margin_mm",
             Kind::Number,
             Unit::Mm,
-            NOT_NEGATIVE,
+            Some(MARGIN_RANGE),
             Preset::Value(Value::Number(0.0)),
             "as for `formcam correct`",
         ),

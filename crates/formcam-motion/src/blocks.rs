@@ -11,6 +11,12 @@
 
 use crate::{MotionError, TrajectoryFault};
 
+/// A linear axis's tolerance when a job gives none, mm.
+pub const DEFAULT_TOLERANCE_MM: f64 = 0.05;
+
+/// A rotary axis's tolerance when a job gives none, degrees.
+pub const DEFAULT_TOLERANCE_DEG: f64 = 0.05;
+
 /// How far a block may leave the sampled trajectory.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Tolerance {

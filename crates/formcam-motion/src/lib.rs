@@ -27,10 +27,10 @@ mod times;
 pub use acceleration::{
     check_acceleration, check_sequence_acceleration, sequence_with_acceleration, with_acceleration,
 };
-pub use blocks::{Deviation, Tolerance, fit_blocks};
+pub use blocks::{DEFAULT_TOLERANCE_DEG, DEFAULT_TOLERANCE_MM, Deviation, Tolerance, fit_blocks};
 pub use error::{MotionError, SetupStage, SolverFault, TrajectoryFault};
 pub use ramps::ramp_pieces;
 pub use times::{
-    AxisLimits, Timing, check_timing, deltas, global, global_by_cone, join_times, pairwise,
-    preliminary_times,
+    AxisLimits, DEFAULT_TAU_S, Timing, check_timing, deltas, global, global_by_cone, join_times,
+    pairwise, preliminary_times,
 };

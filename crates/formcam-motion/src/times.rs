@@ -88,6 +88,9 @@ impl Jumps {
     }
 }
 
+/// The controller's least block time `tau` when a job gives none, s.
+pub const DEFAULT_TAU_S: f64 = 0.004;
+
 /// Eq. 17: `t*_i = max(max_k |Delta_i^k| / f_max^k, tau)`.
 pub fn preliminary_times(
     deltas: &[f64],

@@ -5,17 +5,21 @@
 use std::fmt;
 use std::str::FromStr;
 
+use strum::VariantNames;
+
 use crate::NcError;
 
 /// An NC dialect: what the writers write ([`write`](crate::write)) and
 /// whose syntax the readers read ([`read_toolpath`](crate::read_toolpath),
 /// [`read_gcode_in`](crate::read_gcode_in)).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, strum::IntoStaticStr, strum::VariantNames)]
+#[strum(serialize_all = "lowercase")]
 pub enum Dialect {
     /// ISO 4343 APT text CLDATA with machine-axis `GOTO` records (`.cls`).
     Cldata,
     /// Siemens Sinumerik 840D part program (`.MPF`): `;` comments, `CR=`
     /// radii, `NAME=value` addresses, keywords on their own lines.
+    #[strum(serialize = "sinumerik-840d")]
     Sinumerik840d,
     /// ISO 6983 / Fanuc-style G-code (`.nc`): `(…)` comments, `R` radii.
     Iso,
@@ -23,7 +27,19 @@ pub enum Dialect {
     LinuxCnc,
     /// Marlin firmware with axes X, A, B (FiberPath / Cyclone winders)
     /// (`.gcode`); read with the ISO syntax.
+    #[strum(serialize = "marlin-xab")]
     MarlinXab,
+}
+
+/// Where [`Dialect::names_of`] lists the aliases.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Aliases {
+    /// Not at all.
+    None,
+    /// All of them, after the names.
+    Last,
+    /// Each after its dialect's name.
+    Each,
 }
 
 impl Dialect {
@@ -36,9 +52,8 @@ impl Dialect {
         Dialect::MarlinXab,
     ];
 
-    /// The dialects' names.
-    pub const NAMES: [&'static str; 5] =
-        ["cldata", "sinumerik-840d", "iso", "linuxcnc", "marlin-xab"];
+    /// The dialects' names, in the order of [`Dialect::ALL`].
+    pub const NAMES: [&'static str; 5] = Self::names_of::<5>(&Self::ALL, Aliases::None);
 
     /// Other names taken for a dialect: `fanuc` (ISO), `sinumerik` and
     /// `840d` (Sinumerik 840D).
@@ -81,13 +96,42 @@ impl Dialect {
 
     /// The dialect's name, as [`Dialect::from_name`] takes it.
     pub fn name(self) -> &'static str {
-        match self {
-            Dialect::Cldata => "cldata",
-            Dialect::Sinumerik840d => "sinumerik-840d",
-            Dialect::Iso => "iso",
-            Dialect::LinuxCnc => "linuxcnc",
-            Dialect::MarlinXab => "marlin-xab",
+        self.into()
+    }
+
+    /// The names of `dialects`, in their order, with the aliases where
+    /// `aliases` puts them: the words a field taking these dialects lists.
+    /// `N` must be their count.
+    pub const fn names_of<const N: usize>(
+        dialects: &[Dialect],
+        aliases: Aliases,
+    ) -> [&'static str; N] {
+        let mut out = [""; N];
+        let mut k = 0;
+        let mut i = 0;
+        while i <= dialects.len() {
+            let last = i == dialects.len();
+            if !last {
+                out[k] = Self::VARIANTS[dialects[i] as usize];
+                k += 1;
+            }
+            let mut j = 0;
+            while j < Self::ALIASES.len() {
+                let take = match aliases {
+                    Aliases::None => false,
+                    Aliases::Last => last,
+                    Aliases::Each => !last && Self::ALIASES[j].1 as usize == dialects[i] as usize,
+                };
+                if take {
+                    out[k] = Self::ALIASES[j].0;
+                    k += 1;
+                }
+                j += 1;
+            }
+            i += 1;
         }
+        assert!(k == N, "N is not the number of names");
+        out
     }
 
     /// The file extension, without the dot.
@@ -122,7 +166,13 @@ mod tests {
 
     #[test]
     fn names_aliases_and_extensions_lead_to_one_dialect() {
-        for d in Dialect::ALL {
+        assert_eq!(
+            Dialect::NAMES,
+            ["cldata", "sinumerik-840d", "iso", "linuxcnc", "marlin-xab"]
+        );
+        for (i, d) in Dialect::ALL.into_iter().enumerate() {
+            assert_eq!(d as usize, i);
+            assert_eq!(Dialect::NAMES[i], d.name());
             assert_eq!(Dialect::from_name(d.name()), Ok(d));
             assert_eq!(Dialect::from_name(&d.name().to_uppercase()), Ok(d));
             assert_eq!(Dialect::from_extension(d.extension()), Some(d));
@@ -133,6 +183,15 @@ mod tests {
         assert_eq!(Dialect::from_name("Sinumerik"), Ok(Dialect::Sinumerik840d));
         assert_eq!(Dialect::from_extension("SPF"), Some(Dialect::Sinumerik840d));
         assert_eq!(Dialect::from_extension("tap"), None);
+        let order = [Dialect::Iso, Dialect::Sinumerik840d];
+        assert_eq!(
+            Dialect::names_of::<5>(&order, Aliases::Last),
+            ["iso", "sinumerik-840d", "fanuc", "sinumerik", "840d"]
+        );
+        assert_eq!(
+            Dialect::names_of::<5>(&order, Aliases::Each),
+            ["iso", "fanuc", "sinumerik-840d", "sinumerik", "840d"]
+        );
         let e = Dialect::from_name("heidenhain").map(|_| ()).unwrap_err();
         assert!(e.to_string().contains("marlin-xab"), "{e}");
     }

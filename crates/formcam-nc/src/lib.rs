@@ -41,7 +41,7 @@ mod read;
 mod template;
 mod toolpath;
 
-pub use dialect::Dialect;
+pub use dialect::{Aliases, Dialect};
 pub use error::{NcError, ProgramFault, Refusal, TemplateProblem, Truncation};
 pub use modulo::{BOUND_DEG, ModuloStyle, keep_within_turns};
 pub use post::write;

@@ -6,14 +6,30 @@
 //! unless the job lists each failed check in `[checks] allow`; then the summary
 //! and the program's header say which were accepted.
 
-use formcam_winding::eye::Violation;
+use formcam_machine::IssueKind;
+use formcam_winding::eye::{Constraint, Violation};
 use serde::{Deserialize, Serialize};
+use strum::VariantNames;
 
 use crate::ProgramError;
 
 /// A check of a winding program (the name users write in `[checks] allow`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Deserialize, Serialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    PartialOrd,
+    Ord,
+    Hash,
+    Deserialize,
+    Serialize,
+    strum::IntoStaticStr,
+    strum::VariantNames,
+)]
 #[serde(rename_all = "kebab-case")]
+#[strum(serialize_all = "kebab-case")]
 pub enum Check {
     /// The eye's free length and position repeat after a circuit.
     Cyclicity,
@@ -21,6 +37,7 @@ pub enum Check {
     Clearance,
     /// The free band stays within the eye's largest free length.
     #[serde(rename = "l_max")]
+    #[strum(serialize = "l_max")]
     LMax,
     /// The band is pulled, never fed back (it would go slack).
     Slack,
@@ -39,17 +56,7 @@ pub enum Check {
 impl Check {
     /// The name users write.
     pub fn name(self) -> &'static str {
-        match self {
-            Check::Cyclicity => "cyclicity",
-            Check::Clearance => "clearance",
-            Check::LMax => "l_max",
-            Check::Slack => "slack",
-            Check::ReverseRotation => "reverse-rotation",
-            Check::Limits => "limits",
-            Check::Unreachable => "unreachable",
-            Check::Timing => "timing",
-            Check::Acceleration => "acceleration",
-        }
+        self.into()
     }
 
     /// Every check, in order.
@@ -65,43 +72,34 @@ impl Check {
         Check::Acceleration,
     ];
 
-    /// The check an eye constraint's violation belongs to.
-    pub fn of_eye_constraint(constraint: &str) -> Option<Check> {
-        match constraint {
-            "cyclicity" => Some(Check::Cyclicity),
-            "clearance" => Some(Check::Clearance),
-            "l_max" => Some(Check::LMax),
-            "slack" => Some(Check::Slack),
-            "reverse-rotation" => Some(Check::ReverseRotation),
-            _ => None,
-        }
-    }
-
     /// The check an inverse-kinematics issue belongs to (branch jumps are
     /// reported, not checked).
-    pub fn of_ik_issue(kind: &str) -> Option<Check> {
+    pub fn of_issue(kind: IssueKind) -> Option<Check> {
         match kind {
-            "limit" => Some(Check::Limits),
-            "unreachable" => Some(Check::Unreachable),
-            "clearance" => Some(Check::Clearance),
-            _ => None,
+            IssueKind::Limit => Some(Check::Limits),
+            IssueKind::Unreachable => Some(Check::Unreachable),
+            IssueKind::Clearance => Some(Check::Clearance),
+            IssueKind::Jump => None,
+        }
+    }
+}
+
+impl From<Constraint> for Check {
+    /// The check an eye constraint's violation belongs to.
+    fn from(constraint: Constraint) -> Check {
+        match constraint {
+            Constraint::Cyclicity => Check::Cyclicity,
+            Constraint::Clearance => Check::Clearance,
+            Constraint::LMax => Check::LMax,
+            Constraint::Slack => Check::Slack,
+            Constraint::ReverseRotation => Check::ReverseRotation,
         }
     }
 }
 
 /// The checks' names, in the order of [`Check::ALL`] (the words of
 /// `[checks] allow`).
-pub const CHECK_NAMES: &[&str] = &[
-    "cyclicity",
-    "clearance",
-    "l_max",
-    "slack",
-    "reverse-rotation",
-    "limits",
-    "unreachable",
-    "timing",
-    "acceleration",
-];
+pub const CHECK_NAMES: &[&str] = Check::VARIANTS;
 
 impl std::str::FromStr for Check {
     type Err = String;
@@ -156,8 +154,8 @@ pub fn enforce(allow: &[Check], violated: &[Violated]) -> Result<(), ProgramErro
 pub fn eye_violations(layer: &str, violations: &[Violation]) -> Vec<Violated> {
     violations
         .iter()
-        .filter_map(|v| {
-            let check = Check::of_eye_constraint(v.constraint.name())?;
+        .map(|v| {
+            let check = Check::from(v.constraint);
             let what = match check {
                 Check::Slack => "let the band go slack (the eye feeds it back)",
                 Check::Clearance => "bring the eye within its clearance of the mandrel",
@@ -165,14 +163,14 @@ pub fn eye_violations(layer: &str, violations: &[Violation]) -> Vec<Violated> {
                 Check::ReverseRotation => "turn the mandrel backwards",
                 _ => "leave the eye's circuit unclosed (cyclicity)",
             };
-            Some(Violated {
+            Violated {
                 check,
                 layer: layer.to_string(),
                 detail: format!(
                     "{what} at x = {:.3} mm ({} points, worst {:.4})",
                     v.x, v.count, v.worst
                 ),
-            })
+            }
         })
         .collect()
 }

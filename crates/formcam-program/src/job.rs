@@ -9,7 +9,8 @@ use std::path::{Path, PathBuf};
 use formcam_machine::IkMethod;
 use formcam_machine::Machine;
 use formcam_machine::shipped::{names, shipped};
-use formcam_nc::{Dialect, Template};
+use formcam_motion::{DEFAULT_TAU_S, DEFAULT_TOLERANCE_DEG, DEFAULT_TOLERANCE_MM};
+use formcam_nc::{Aliases, Dialect, Template};
 use formcam_schema::{
     Default as Given, EmptyList, JobSchema, Kind, Range, Repeat, SchemaError, Table, Unit, Value,
     field, validate,
@@ -399,17 +400,18 @@ fn read_post(table: PostTable, base_dir: &Path) -> Result<Post, ProgramError> {
     }
 }
 
-/// The names `[post] dialect` takes (the dialects and their aliases).
-const DIALECTS: &[&str] = &[
-    "sinumerik-840d",
-    "iso",
-    "linuxcnc",
-    "marlin-xab",
-    "cldata",
-    "fanuc",
-    "sinumerik",
-    "840d",
-];
+/// The names `[post] dialect` takes: the dialects, the default first, then
+/// their aliases.
+const DIALECTS: &[&str] = &Dialect::names_of::<8>(
+    &[
+        Dialect::Sinumerik840d,
+        Dialect::Iso,
+        Dialect::LinuxCnc,
+        Dialect::MarlinXab,
+        Dialect::Cldata,
+    ],
+    Aliases::Last,
+);
 
 /// The shipped machines' names, as `[machine] name` takes them.
 const MACHINES: &[&str] = &[
@@ -468,7 +470,7 @@ pub const MOTION: Table = Table {
             Kind::Number,
             Unit::Mm,
             POSITIVE,
-            Given::Value(Value::Number(0.05)),
+            Given::Value(Value::Number(DEFAULT_TOLERANCE_MM)),
             "linear axes' tolerance of the blocks",
         ),
         field(
@@ -476,7 +478,7 @@ pub const MOTION: Table = Table {
             Kind::Number,
             Unit::Deg,
             POSITIVE,
-            Given::Value(Value::Number(0.05)),
+            Given::Value(Value::Number(DEFAULT_TOLERANCE_DEG)),
             "rotary axes' tolerance",
         ),
         field(
@@ -492,7 +494,7 @@ pub const MOTION: Table = Table {
             Kind::Number,
             Unit::S,
             POSITIVE,
-            Given::Value(Value::Number(0.004)),
+            Given::Value(Value::Number(DEFAULT_TAU_S)),
             "the controller's least block time",
         ),
         field(

@@ -9,8 +9,11 @@ use super::{AxisTrack, ORIENTATION_SCALE};
 use crate::{Machine, Target};
 
 /// What kind of problem the inverse kinematics found.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, strum::IntoStaticStr, strum::EnumString,
+)]
 #[serde(rename_all = "lowercase")]
+#[strum(serialize_all = "lowercase")]
 pub enum IssueKind {
     /// An axis beyond its limits.
     Limit,
@@ -25,12 +28,7 @@ pub enum IssueKind {
 impl IssueKind {
     /// The name in files and messages: `limit`, `unreachable`, `clearance`, `jump`.
     pub fn name(self) -> &'static str {
-        match self {
-            IssueKind::Limit => "limit",
-            IssueKind::Unreachable => "unreachable",
-            IssueKind::Clearance => "clearance",
-            IssueKind::Jump => "jump",
-        }
+        self.into()
     }
 }
 

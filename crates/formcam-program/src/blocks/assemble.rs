@@ -39,7 +39,10 @@ pub fn assemble(
     layers: &[LayerBlocks],
     motion: &MotionJob,
 ) -> Result<Assembled, ProgramError> {
-    let tau = positive("motion.tau_s", motion.tau_s.unwrap_or(0.004))?;
+    let tau = positive(
+        "motion.tau_s",
+        motion.tau_s.unwrap_or(formcam_motion::DEFAULT_TAU_S),
+    )?;
     let total = layer_totals(layers);
     let mut program = Program::new(name, program_axes(m));
     let limits = axis_limits(m);

@@ -81,7 +81,7 @@ fn ik_violations(label: &str, track: &AxisTrack) -> Vec<Violated> {
         .issues
         .iter()
         .filter_map(|i| {
-            let check = Check::of_ik_issue(i.kind.name())?;
+            let check = Check::of_issue(i.kind)?;
             let what = match (check, &i.axis) {
                 (Check::Limits, Some(a)) => format!("drive axis {a} beyond its limit"),
                 (Check::Clearance, _) => "bring the eye within its clearance".to_string(),
@@ -102,9 +102,22 @@ fn ik_violations(label: &str, track: &AxisTrack) -> Vec<Violated> {
 /// The job's tolerances per axis (and of the payout point) and its least
 /// block time `tau`, s.
 fn tolerance(m: &Machine, motion: &MotionJob) -> Result<(Tolerance, f64), ProgramError> {
-    let tol_mm = positive("motion.tolerance_mm", motion.tolerance_mm.unwrap_or(0.05))?;
-    let tol_deg = positive("motion.tolerance_deg", motion.tolerance_deg.unwrap_or(0.05))?;
-    let tau = positive("motion.tau_s", motion.tau_s.unwrap_or(0.004))?;
+    let tol_mm = positive(
+        "motion.tolerance_mm",
+        motion
+            .tolerance_mm
+            .unwrap_or(formcam_motion::DEFAULT_TOLERANCE_MM),
+    )?;
+    let tol_deg = positive(
+        "motion.tolerance_deg",
+        motion
+            .tolerance_deg
+            .unwrap_or(formcam_motion::DEFAULT_TOLERANCE_DEG),
+    )?;
+    let tau = positive(
+        "motion.tau_s",
+        motion.tau_s.unwrap_or(formcam_motion::DEFAULT_TAU_S),
+    )?;
     let position = motion
         .position_tolerance_mm
         .map(|p| positive("motion.position_tolerance_mm", p))

@@ -42,7 +42,7 @@ fn in_order(
     layers: &[WoundLayer],
     own: Vec<Option<LayerBlocks>>,
 ) -> Result<Vec<LayerBlocks>, ProgramError> {
-    let tau = job.motion.tau_s.unwrap_or(0.004);
+    let tau = job.motion.tau_s.unwrap_or(formcam_motion::DEFAULT_TAU_S);
     let first_start: Vec<f64> = own
         .iter()
         .flatten()

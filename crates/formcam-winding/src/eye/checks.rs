@@ -11,23 +11,22 @@ use super::spec::EyeSpec;
 use super::trajectory::EyePoint;
 
 /// A constraint of the eye trajectory.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, strum::IntoStaticStr)]
+#[serde(rename_all = "kebab-case")]
+#[strum(serialize_all = "kebab-case")]
 pub enum Constraint {
     /// The trajectory closes: the free length and the eye's position (after the
     /// circuit's turn) at the end are those at the start.
-    #[serde(rename = "cyclicity")]
     Cyclicity,
     /// The eye keeps the clearance from the mandrel.
-    #[serde(rename = "clearance")]
     Clearance,
     /// The free length stays under `l_max`.
     #[serde(rename = "l_max")]
+    #[strum(serialize = "l_max")]
     LMax,
     /// The band never slackens: `d(l + s)/dx >= 0`.
-    #[serde(rename = "slack")]
     Slack,
     /// The mandrel never turns back: `dV/dx >= 0`.
-    #[serde(rename = "reverse-rotation")]
     ReverseRotation,
 }
 
@@ -44,13 +43,7 @@ impl Constraint {
     /// The name in files and messages: `cyclicity`, `clearance`, `l_max`,
     /// `slack`, `reverse-rotation`.
     pub fn name(self) -> &'static str {
-        match self {
-            Constraint::Cyclicity => "cyclicity",
-            Constraint::Clearance => "clearance",
-            Constraint::LMax => "l_max",
-            Constraint::Slack => "slack",
-            Constraint::ReverseRotation => "reverse-rotation",
-        }
+        self.into()
     }
 }
 

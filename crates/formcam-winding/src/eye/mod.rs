@@ -38,5 +38,8 @@ mod trajectory;
 pub use band::{axis_parallel_length, eye_at};
 pub use checks::{Constraint, PullStats, Violation};
 pub(crate) use geometric::curve_fault;
-pub use spec::{EyeMode, EyeSpec};
+pub use spec::{
+    DEFAULT_CLEARANCE_MM, DEFAULT_NODES, DEFAULT_SAMPLES, EyeMode, EyeSpec, NODE_COUNTS,
+    SAMPLE_COUNTS,
+};
 pub use trajectory::{Comparison, EyePoint, EyeTrajectory, eye_trajectory};

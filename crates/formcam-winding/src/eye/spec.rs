@@ -1,6 +1,8 @@
 //! What the user asks of the eye: the mode and its fields, checked against the
 //! mandrel.
 
+use std::ops::RangeInclusive;
+
 use formcam_geom::Meridian;
 use serde::Serialize;
 
@@ -19,6 +21,21 @@ pub enum EyeMode {
     /// The pull-speed optimum.
     PullSpeed,
 }
+
+/// The least clearance's default, mm.
+pub const DEFAULT_CLEARANCE_MM: f64 = 20.0;
+
+/// The points of a geometric trajectory allowed.
+pub const SAMPLE_COUNTS: RangeInclusive<usize> = 101..=10_000_000;
+
+/// The points of a geometric trajectory by default.
+pub const DEFAULT_SAMPLES: usize = 2001;
+
+/// The intervals of the optimised `l(x)` allowed.
+pub const NODE_COUNTS: RangeInclusive<usize> = 100..=200_000;
+
+/// The intervals of the optimised `l(x)` by default.
+pub const DEFAULT_NODES: usize = 2000;
 
 /// What the user asks of the eye.
 #[derive(Debug, Clone, PartialEq)]
@@ -47,12 +64,12 @@ impl Default for EyeSpec {
         Self {
             mode: EyeMode::PullSpeed,
             radius: None,
-            clearance: 20.0,
+            clearance: DEFAULT_CLEARANCE_MM,
             l_max: 400.0,
             bath_moves_with_eye: true,
             curve: Vec::new(),
-            samples: 2001,
-            nodes: 2000,
+            samples: DEFAULT_SAMPLES,
+            nodes: DEFAULT_NODES,
         }
     }
 }
@@ -72,15 +89,18 @@ pub(super) fn check_spec<M: Meridian>(m: &M, spec: &EyeSpec) -> Result<(), Windi
     };
     pos("eye.clearance", spec.clearance)?;
     pos("eye.l_max", spec.l_max)?;
-    if !(101..=10_000_000).contains(&spec.samples) {
-        return Err(WindingError::field(
-            "eye.samples",
-            "must be in [101, 10000000]",
-        ));
-    }
-    if !(100..=200_000).contains(&spec.nodes) {
-        return Err(WindingError::field("eye.nodes", "must be in [100, 200000]"));
-    }
+    let count = |field: &str, v: usize, range: RangeInclusive<usize>| {
+        if range.contains(&v) {
+            Ok(())
+        } else {
+            Err(WindingError::field(
+                field,
+                format!("must be in [{}, {}]", range.start(), range.end()),
+            ))
+        }
+    };
+    count("eye.samples", spec.samples, SAMPLE_COUNTS)?;
+    count("eye.nodes", spec.nodes, NODE_COUNTS)?;
     if spec.mode == EyeMode::AxisParallel {
         let radius = spec.radius.ok_or_else(|| {
             WindingError::field("eye.radius", "missing: the radius of the eye's line, mm")

@@ -2,11 +2,16 @@
 //! range, default and help. The job's reader validates against them before
 //! serde, and `docs/winding.md` lists them.
 
+use std::ops::RangeInclusive;
+
 use formcam_schema::{
     Condition, Default as Given, Field, Kind, Range, Repeat, Table, Unit, Value, field,
 };
 
 use super::{DomeKind, MandrelKind};
+use crate::eye::{
+    DEFAULT_CLEARANCE_MM, DEFAULT_NODES, DEFAULT_SAMPLES, NODE_COUNTS, SAMPLE_COUNTS,
+};
 
 const fn when(field: &'static str, words: &'static [&'static str]) -> Given {
     Given::RequiredWhen(Condition::Is { field, words })
@@ -374,6 +379,11 @@ pub const LAYER_FIELDS: &[Field] = &[
     ),
 ];
 
+/// A range of counts as the description's closed range.
+const fn counts(range: RangeInclusive<usize>) -> Range {
+    Range::closed(*range.start() as f64, *range.end() as f64)
+}
+
 /// The fields of `[eye]`.
 pub const EYE_FIELDS: &[Field] = &[
     field(
@@ -399,7 +409,7 @@ pub const EYE_FIELDS: &[Field] = &[
         Kind::Number,
         Unit::Mm,
         POSITIVE,
-        Given::Value(Value::Number(20.0)),
+        Given::Value(Value::Number(DEFAULT_CLEARANCE_MM)),
         "the least clearance round the mandrel for every mode, and the equidistant's distance",
     ),
     field(
@@ -431,16 +441,16 @@ pub const EYE_FIELDS: &[Field] = &[
         "samples",
         Kind::Integer,
         Unit::None,
-        Some(Range::closed(101.0, 10_000_000.0)),
-        Given::Value(Value::Integer(2001)),
+        Some(counts(SAMPLE_COUNTS)),
+        Given::Value(Value::Integer(DEFAULT_SAMPLES as i64)),
         "points of a geometric trajectory",
     ),
     field(
         "nodes",
         Kind::Integer,
         Unit::None,
-        Some(Range::closed(100.0, 200_000.0)),
-        Given::Value(Value::Integer(2000)),
+        Some(counts(NODE_COUNTS)),
+        Given::Value(Value::Integer(DEFAULT_NODES as i64)),
         "intervals of the optimised `l(x)` (pull-speed)",
     ),
 ];

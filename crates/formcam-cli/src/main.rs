@@ -78,8 +78,8 @@ enum Command {
         eye_clearance: Option<f64>,
         /// `.wind` jobs: checks whose failure is accepted (comma-separated);
         /// TOML jobs use `[checks] allow`.
-        #[arg(long, value_name = "CHECKS", value_delimiter = ',')]
-        allow: Vec<wind::AllowCheck>,
+        #[arg(long, value_name = "CHECKS", value_delimiter = ',', value_parser = wind::allow_parser())]
+        allow: Vec<formcam_program::Check>,
         /// Do not check the written program on its machine (by default it is
         /// read back and checked as `formcam check` does: check.json, exit
         /// status 3 when a check fails).

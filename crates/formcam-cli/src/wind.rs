@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use clap::ValueEnum;
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use formcam_program::{Check, Stage};
 use formcam_run::ProgramCheck;
 
@@ -11,44 +11,11 @@ use crate::CliError;
 use crate::output::emit;
 use crate::progress::with_bar;
 
-/// A check whose failure a `.wind` job accepts (`--allow`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum AllowCheck {
-    /// The eye's circuit closes.
-    Cyclicity,
-    /// The eye keeps its clearance.
-    Clearance,
-    /// The free band within `l_max`.
-    #[value(name = "l_max")]
-    LMax,
-    /// The band never goes slack.
-    Slack,
-    /// The mandrel never turns backwards.
-    ReverseRotation,
-    /// Every axis within its limits.
-    Limits,
-    /// Every eye point reached.
-    Unreachable,
-    /// Block times within the velocity limits.
-    Timing,
-    /// Block times within the acceleration limits.
-    Acceleration,
-}
-
-impl From<AllowCheck> for Check {
-    fn from(c: AllowCheck) -> Self {
-        match c {
-            AllowCheck::Cyclicity => Check::Cyclicity,
-            AllowCheck::Clearance => Check::Clearance,
-            AllowCheck::LMax => Check::LMax,
-            AllowCheck::Slack => Check::Slack,
-            AllowCheck::ReverseRotation => Check::ReverseRotation,
-            AllowCheck::Limits => Check::Limits,
-            AllowCheck::Unreachable => Check::Unreachable,
-            AllowCheck::Timing => Check::Timing,
-            AllowCheck::Acceleration => Check::Acceleration,
-        }
-    }
+/// `--allow`'s words: every check by the name users write, with what it
+/// holds (a `.wind` job's checks whose failure is accepted).
+pub fn allow_parser() -> impl TypedValueParser<Value = Check> {
+    let words = Check::ALL.map(|c| PossibleValue::new(c.name()).help(c.meaning()));
+    PossibleValuesParser::new(words).try_map(|s| s.parse::<Check>())
 }
 
 /// What a winding command printed and whether the program it wrote
@@ -91,13 +58,12 @@ pub fn run_wind_file(
     job: &Path,
     out: &Path,
     eye_clearance: f64,
-    allow: &[AllowCheck],
+    allow: &[Check],
     no_check: bool,
 ) -> Result<Wound, CliError> {
-    let allow: Vec<Check> = allow.iter().map(|&c| c.into()).collect();
     let check = program_check(no_check);
     let run = with_bar(|p| {
-        formcam_run::wind_file_checked_with(job, out, eye_clearance, &allow, check, p)
+        formcam_run::wind_file_checked_with(job, out, eye_clearance, allow, check, p)
     })?;
     Wound::of(out, run)
 }

@@ -59,6 +59,21 @@ impl Check {
         self.into()
     }
 
+    /// What the check holds, in a few words (`formcam wind --help`).
+    pub fn meaning(self) -> &'static str {
+        match self {
+            Check::Cyclicity => "the eye's circuit closes",
+            Check::Clearance => "the eye keeps its clearance",
+            Check::LMax => "the free band within l_max",
+            Check::Slack => "the band never goes slack",
+            Check::ReverseRotation => "the mandrel never turns backwards",
+            Check::Limits => "every axis within its limits",
+            Check::Unreachable => "every eye point reached",
+            Check::Timing => "block times within the velocity limits",
+            Check::Acceleration => "block times within the acceleration limits",
+        }
+    }
+
     /// Every check, in order.
     pub const ALL: [Check; 9] = [
         Check::Cyclicity,

@@ -277,12 +277,7 @@ impl View {
                 .ok_or(Refusal::NotFound),
             ["api", "dressing", "sample"] => {
                 let (d, _) = self.dressing.as_ref().ok_or(Refusal::NotFound)?;
-                let t = target
-                    .param("t")
-                    .and_then(|s| s.parse::<f64>().ok())
-                    .filter(|t| t.is_finite())
-                    .ok_or(Refusal::Path)?;
-                Ok((JSON, json(&d.sample(t))))
+                Ok((JSON, json(&d.sample(time_param(&target)?))))
             }
             ["api", "correction"] => self
                 .correction
@@ -307,44 +302,12 @@ impl View {
                 .clone()
                 .map(|t| (TEXT, t.into_bytes()))
                 .ok_or(Refusal::NotFound),
-            ["api", "timeline"] => {
-                let tl = self.timeline.as_ref().ok_or(Refusal::NotFound)?;
-                let n = match target.param("samples") {
-                    None => DEFAULT_SAMPLES,
-                    Some(s) => s.parse::<usize>().map_err(|_| Refusal::Path)?,
-                };
-                let n = n.clamp(2, MAX_SAMPLES);
-                Ok((
-                    JSON,
-                    json(&TimelineBody {
-                        head: tl.head(),
-                        samples: tl.samples(n).into_iter().map(|s| self.shown(s)).collect(),
-                    }),
-                ))
-            }
+            ["api", "timeline"] => self.timeline_answer(&target),
             ["api", "sample"] => {
                 let tl = self.timeline.as_ref().ok_or(Refusal::NotFound)?;
-                let t = target
-                    .param("t")
-                    .and_then(|s| s.parse::<f64>().ok())
-                    .filter(|t| t.is_finite())
-                    .ok_or(Refusal::Path)?;
-                Ok((JSON, json(&self.shown(tl.sample(t)))))
+                Ok((JSON, json(&self.shown(tl.sample(time_param(&target)?)))))
             }
-            ["api", "blocks"] => {
-                let tl = self.timeline.as_ref().ok_or(Refusal::NotFound)?;
-                let spans: Vec<(f64, f64)> = (0..tl.lines().len())
-                    .filter_map(|b| tl.block_span(b))
-                    .collect();
-                Ok((
-                    JSON,
-                    json(&BlocksBody {
-                        starts: spans.iter().map(|s| s.0).collect(),
-                        ends: spans.iter().map(|s| s.1).collect(),
-                        lines: &tl.lines(),
-                    }),
-                ))
-            }
+            ["api", "blocks"] => self.blocks_answer(),
             ["api", "violations"] => self.overlay_json(|o| Some(json(&o.violations))),
             ["api", "eye"] => self.overlay_json(|o| Some(json(&o.eye))),
             ["api", "band"] => self.overlay_json(|o| o.band.as_ref().map(json)),
@@ -359,6 +322,40 @@ impl View {
             ["favicon.ico"] if self.page.get("favicon.ico").is_none() => Ok((ICON, Vec::new())),
             _ => self.page_file(&seg.join("/")),
         }
+    }
+
+    /// `/api/timeline?samples=N`: the timeline's head and `N` samples
+    /// (clamped to 2..=`MAX_SAMPLES`, `DEFAULT_SAMPLES` when not given).
+    fn timeline_answer(&self, target: &Target) -> Result<(&'static str, Vec<u8>), Refusal> {
+        let tl = self.timeline.as_ref().ok_or(Refusal::NotFound)?;
+        let n = match target.param("samples") {
+            None => DEFAULT_SAMPLES,
+            Some(s) => s.parse::<usize>().map_err(|_| Refusal::Path)?,
+        };
+        let n = n.clamp(2, MAX_SAMPLES);
+        Ok((
+            JSON,
+            json(&TimelineBody {
+                head: tl.head(),
+                samples: tl.samples(n).into_iter().map(|s| self.shown(s)).collect(),
+            }),
+        ))
+    }
+
+    /// `/api/blocks`: each block's start and end time and its line.
+    fn blocks_answer(&self) -> Result<(&'static str, Vec<u8>), Refusal> {
+        let tl = self.timeline.as_ref().ok_or(Refusal::NotFound)?;
+        let spans: Vec<(f64, f64)> = (0..tl.lines().len())
+            .filter_map(|b| tl.block_span(b))
+            .collect();
+        Ok((
+            JSON,
+            json(&BlocksBody {
+                starts: spans.iter().map(|s| s.0).collect(),
+                ends: spans.iter().map(|s| s.1).collect(),
+                lines: &tl.lines(),
+            }),
+        ))
     }
 
     /// A sample with what the overlays add to it.
@@ -414,6 +411,16 @@ const BINARY: &str = "application/octet-stream";
 fn json<T: Serialize>(v: &T) -> Vec<u8> {
     // Our own plain data (numbers, strings) always serialises.
     serde_json::to_vec(v).unwrap_or_default()
+}
+
+/// The query's time `t` in seconds: a finite number, or the request is
+/// refused.
+fn time_param(target: &Target) -> Result<f64, Refusal> {
+    target
+        .param("t")
+        .and_then(|s| s.parse::<f64>().ok())
+        .filter(|t| t.is_finite())
+        .ok_or(Refusal::Path)
 }
 
 /// The content type of a file served, by its extension (plain text for

@@ -82,11 +82,36 @@ pub(crate) fn push_comment_text(out: &mut Out, text: &str, parens: bool) {
     // Bytes of multi-byte UTF-8 sequences are never ASCII: byte-wise
     // replacement keeps the text valid.
     for b in text.bytes() {
-        out.byte(match b {
-            b'\n' | b'\r' => b' ',
-            b'(' if parens => b'[',
-            b')' if parens => b']',
-            b => b,
-        });
+        out.byte(comment_byte(b, parens));
+    }
+}
+
+/// A byte of a comment's text as written: line breaks made spaces and, for
+/// parenthesis comments, `(`/`)` made `[`/`]`.
+fn comment_byte(b: u8, parens: bool) -> u8 {
+    match b {
+        b'\n' | b'\r' => b' ',
+        b'(' if parens => b'[',
+        b')' if parens => b']',
+        b => b,
+    }
+}
+
+impl Dialect {
+    /// The text a comment `text` has in a program written in this dialect,
+    /// as its reader gives it back: line breaks made spaces and, where
+    /// comments are in parentheses (ISO, LinuxCNC), `(`/`)` made `[`/`]`.
+    /// Whoever looks for a comment it wrote (a layer's label) looks for this.
+    pub fn comment_as_written(self, text: &str) -> String {
+        let parens = match self {
+            Dialect::Cldata => false,
+            Dialect::Sinumerik840d => gcode::SINUMERIK.parens(),
+            Dialect::Iso => gcode::ISO.parens(),
+            Dialect::LinuxCnc => gcode::LINUXCNC.parens(),
+            Dialect::MarlinXab => gcode::MARLIN.parens(),
+        };
+        let bytes: Vec<u8> = text.bytes().map(|b| comment_byte(b, parens)).collect();
+        // Only ASCII bytes were replaced by ASCII bytes: still UTF-8.
+        String::from_utf8(bytes).unwrap_or_else(|_| text.to_owned())
     }
 }

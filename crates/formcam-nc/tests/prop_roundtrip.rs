@@ -33,23 +33,24 @@ use formcam_nc::{
 };
 use proptest::prelude::*;
 
-/// The dialects that write comments in parentheses.
-fn parens(d: Dialect) -> bool {
-    matches!(d, Dialect::Iso | Dialect::LinuxCnc)
+/// A comment as the dialect keeps it: formcam-nc's own rule
+/// ([`Dialect::comment_as_written`]), trimmed as readers trim.
+fn kept(text: &str, d: Dialect) -> String {
+    d.comment_as_written(text).trim().to_string()
 }
 
-/// A comment as the dialect keeps it.
-fn kept(text: &str, d: Dialect) -> String {
-    let s: String = text
-        .chars()
-        .map(|c| match c {
-            '\n' | '\r' => ' ',
-            '(' if parens(d) => '[',
-            ')' if parens(d) => ']',
-            c => c,
-        })
-        .collect();
-    s.trim().to_string()
+/// The rule spelled out, for the dialects that write comments in
+/// parentheses.
+#[test]
+fn comments_as_written_per_dialect() {
+    let text = "layer 2 (helical)\nnext";
+    for d in Dialect::ALL {
+        let want = match d {
+            Dialect::Iso | Dialect::LinuxCnc => "layer 2 [helical] next",
+            _ => "layer 2 (helical) next",
+        };
+        assert_eq!(d.comment_as_written(text), want, "{d}");
+    }
 }
 
 /// Comments built from the characters that trouble G-code readers.

@@ -308,3 +308,30 @@ fn every_bundled_winding_program_is_clean_of_collisions() {
     }
     assert!(checked.len() >= 4, "{checked:?}");
 }
+
+/// Every layer's label is found again in the program as each dialect
+/// writes it (LinuxCNC and ISO write `layer 2 [hoop]`, their comments being
+/// in parentheses), so each block is checked against the laminate of its
+/// own layer, in every dialect.
+#[test]
+fn each_layer_is_found_in_every_dialect() {
+    let base = repo().join("examples");
+    let text = std::fs::read_to_string(base.join("tube-layers-4axis.toml")).unwrap();
+    for dialect in Dialect::ALL {
+        let job = text.replace(
+            "dialect = \"linuxcnc\"",
+            &format!("dialect = \"{}\"", dialect.name()),
+        );
+        let (program, laminate, job) = wound(&job, &base);
+        let m = job.machine.as_ref().unwrap().machine.clone();
+        let path = PathBuf::from(format!("program.{}", dialect.extension()));
+        let (p, _, read_as) = read_program(&path, &program, &m).unwrap();
+        assert_eq!(read_as, dialect);
+        let mut stages =
+            laminate.stage_of_blocks(dialect, p.blocks.iter().map(|b| b.comment.as_deref()));
+        // The stages rise through every layer in order, each starting once.
+        stages.dedup();
+        let every: Vec<usize> = (0..laminate.labels.len()).collect();
+        assert_eq!(stages, every, "{dialect}: {:?}", laminate.labels);
+    }
+}

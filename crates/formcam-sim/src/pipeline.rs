@@ -159,7 +159,7 @@ fn check_read(
     let collisions = match laminate {
         None => Collisions::new(machine, mesh_dir)?,
         Some(l) => {
-            let stages = l.stage_of_blocks(p.blocks.iter().map(|b| b.comment.as_deref()));
+            let stages = l.stage_of_blocks(dialect, p.blocks.iter().map(|b| b.comment.as_deref()));
             Collisions::with_mandrel(machine, mesh_dir, l, stages)?
         }
     };

@@ -116,6 +116,13 @@ pub(super) const MARLIN: Style = Style {
     modulo: ModWrite::Rezero,
 };
 
+impl Style {
+    /// Comments in parentheses (`(…)`), which cannot hold `(` or `)`.
+    pub(super) fn parens(&self) -> bool {
+        self.parens
+    }
+}
+
 /// Single letters Sinumerik reserves for other addresses.
 const SINUMERIK_RESERVED: &str = "DFGHLMNOPRST";
 const SINUMERIK_TEXT: &str = "a single letter other than D F G H L M N O P R S T, \

@@ -51,7 +51,10 @@ pub fn vessel(n: usize) -> VesselCase {
     }
     let lines: Vec<usize> = (1..=n).collect();
     let laminate = formcam_program::laminate_of_job(&job).unwrap();
-    let stages = laminate.stage_of_blocks(p.blocks.iter().map(|b| b.comment.as_deref()));
+    let stages = laminate.stage_of_blocks(
+        formcam_nc::Dialect::Sinumerik840d,
+        p.blocks.iter().map(|b| b.comment.as_deref()),
+    );
     let collisions = Collisions::with_mandrel(&m, None, &laminate, stages).unwrap();
     let timeline = Timeline::new(&p, &lines, FeedRule::Sinumerik840d, &m).unwrap();
     VesselCase {

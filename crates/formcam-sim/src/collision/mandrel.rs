@@ -5,6 +5,7 @@
 use std::f64::consts::PI;
 
 use formcam_geom::Meridian;
+use formcam_nc::Dialect;
 use nalgebra::{Isometry3, Point3};
 use parry3d_f64::shape::SharedShape;
 
@@ -101,23 +102,30 @@ impl std::fmt::Debug for Laminate {
 }
 
 impl Laminate {
-    /// The layer each block of a program is wound in, from the layers'
-    /// labels in the blocks' comments (the block a label stands on starts
-    /// its layer); when no block carries a label, every block counts in the
-    /// last layer (the whole laminate).
+    /// The layer each block of a program written in `dialect` is wound in,
+    /// from the layers' labels in the blocks' comments as that dialect
+    /// writes them ([`Dialect::comment_as_written`]: `layer 2 [helical]` in
+    /// LinuxCNC and ISO); the block a label stands on starts its layer.
+    /// When no block carries a label, every block counts in the last layer
+    /// (the whole laminate).
     pub fn stage_of_blocks<'a>(
         &self,
+        dialect: Dialect,
         comments: impl Iterator<Item = Option<&'a str>>,
     ) -> Vec<usize> {
+        let labels: Vec<String> = self
+            .labels
+            .iter()
+            .map(|l| dialect.comment_as_written(l))
+            .collect();
         let mut current = 0;
         let mut seen = false;
         let mut out = Vec::new();
         for c in comments {
             if let Some(c) = c
-                && let Some(k) = self
-                    .labels
+                && let Some(k) = labels
                     .iter()
-                    .position(|l| c.split("; ").any(|part| part == l))
+                    .position(|l| c.split("; ").any(|part| part.trim() == l))
             {
                 current = k;
                 seen = true;

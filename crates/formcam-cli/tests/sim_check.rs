@@ -47,7 +47,7 @@ fn the_exit_status_says_clean_failed_or_unreadable() {
     let line = stdout(&o);
     assert_eq!(line.lines().count(), 1, "{line}");
     assert!(
-        line.contains("violations: first velocity at block 3 (line 4, 1.000 s): axis X"),
+        line.contains("violations: velocity at block 3 (line 4, 1.000 s): axis X"),
         "{line}"
     );
     let r: serde_json::Value =
@@ -187,9 +187,8 @@ fn the_mandrel_of_a_job_is_checked_against_the_machine() {
     assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
     let line = stdout(&o);
     assert!(
-        line.starts_with(
-            "1 violation: first collision at block 1 (line 2, 0.000 s): eye and mandrel overlap by"
-        ),
+        line.starts_with("1 violation: collision at block ")
+            && line.contains("eye and mandrel overlap by"),
         "{line}"
     );
     // A job that cannot be read names its file.

@@ -101,7 +101,7 @@ fn a_job_without_acceleration_limits_is_told_its_violations() {
     assert_eq!(line.lines().count(), 1, "{line}");
     assert!(line.contains("; checked: "), "{line}");
     assert!(line.contains(" violation"), "{line}");
-    assert!(line.contains(", first acceleration at block "), "{line}");
+    assert!(line.contains("): acceleration at block "), "{line}");
     // Written all the same, with the report.
     assert!(out.join("program.mpf").exists());
     let report = json(out.join("check.json"));

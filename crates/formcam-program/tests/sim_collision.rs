@@ -123,11 +123,15 @@ fn an_enlarged_chuck_is_hit_at_the_right_block_in_two_dialects() {
             assert!((c.worst_value - worst).abs() < 1e-6, "{c:?}");
             assert_eq!(c.count, 11 - block + 1);
         }
-        assert!(
-            c[0].to_string()
-                .contains("spindle and cross 2.5 mm apart (margin 5 mm)"),
-            "{}",
-            c[0]
+        // The verdict leads with the deepest overlap, then how often and
+        // from where.
+        assert_eq!(
+            c[0].to_string(),
+            format!(
+                "collision at block {} (line {}, {:.3} s): spindle and cross overlap by 30 mm \
+                 (margin 5 mm); broken 4 times from block 8 (line {})",
+                c[0].worst_block, c[0].worst_line, c[0].worst_time_s, c[0].line
+            )
         );
     }
 }
@@ -334,4 +338,39 @@ fn each_layer_is_found_in_every_dialect() {
         let every: Vec<usize> = (0..laminate.labels.len()).collect();
         assert_eq!(stages, every, "{dialect}: {:?}", laminate.labels);
     }
+}
+
+/// A solid exactly at the margin passes, whatever the rounding of the
+/// distance query; a hundredth of a millimetre closer is a collision, told
+/// by its worst value.
+#[test]
+fn a_solid_at_the_margin_passes_and_one_closer_is_told_by_its_worst() {
+    let m = winder(&[]);
+    let margin = m.collision.margin;
+    // The eye's roller (radius 12) over the chuck (radius 120) at Y: Y - 132
+    // mm apart.
+    let at = |y: f64| {
+        let mut p = towards_the_chuck(&m);
+        for b in &mut p.blocks {
+            b.target[2] = y;
+        }
+        check(&p, Dialect::Iso, &m).0
+    };
+    assert_eq!(collisions(&at(132.0 + margin)), Vec::<&Violation>::new());
+    let v = at(132.0 + margin - 0.01);
+    let c = collisions(&v);
+    assert_eq!(c.len(), 1, "{c:?}");
+    assert!(
+        (c[0].worst_value - (margin - 0.01)).abs() < 1e-6,
+        "{:?}",
+        c[0]
+    );
+    let text = c[0].to_string();
+    assert!(
+        text.starts_with(&format!(
+            "collision at block {} (line {}",
+            c[0].worst_block, c[0].worst_line
+        )),
+        "{text}"
+    );
 }

@@ -51,8 +51,8 @@ pub use error::SimError;
 pub use feed::FeedRule;
 pub use fibre::{FibreLayer, FibreSampler, FibreState, FibreTrack, FreeFibre, WoundCircuit};
 pub use limits::{
-    AxisLimits, RELATIVE_TOLERANCE, RESOLUTION_DEG, RESOLUTION_MM, Violation, ViolationKind,
-    check_timeline,
+    AxisLimits, DISTANCE_TOLERANCE_MM, RELATIVE_TOLERANCE, RESOLUTION_DEG, RESOLUTION_MM,
+    Violation, ViolationKind, check_timeline,
 };
 pub use mandrel_check::MandrelCheck;
 pub use pipeline::{

@@ -28,14 +28,15 @@ pub struct Report {
 
 impl Report {
     /// The verdict in one line: `clean: N blocks, T s`, or `K violations:
-    /// first <kind> at block b (line l, t s): ...`.
+    /// <kind> at block b (line l, t s): ...`, the violation that happens
+    /// first, told where it is worst ([`Violation`]'s display).
     pub fn line(&self) -> String {
         match self.violations.first() {
             None => format!("clean: {} blocks, {:.3} s", self.blocks, self.duration_s),
             Some(first) => {
                 let k = self.violations.len();
                 let s = if k == 1 { "" } else { "s" };
-                format!("{k} violation{s}: first {first}")
+                format!("{k} violation{s}: {first}")
             }
         }
     }

@@ -38,7 +38,9 @@ use nalgebra::{Isometry3, Point3, Vector3};
 use rayon::prelude::*;
 
 use crate::fibre::{FibreSampler, FibreState, FibreTrack};
-use crate::{BlockSpan, FreeFibre, SimError, Timeline, Violation, ViolationKind};
+use crate::{
+    BlockSpan, DISTANCE_TOLERANCE_MM, FreeFibre, SimError, Timeline, Violation, ViolationKind,
+};
 
 /// The margins and the sampling of the snag check.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -408,7 +410,7 @@ impl<'a> Checker<'a> {
                 continue;
             }
             let dist = segment_distance(solid.shape, &p, &c);
-            if dist < margin {
+            if dist < margin - DISTANCE_TOLERANCE_MM {
                 self.solid_tallies[k].hit(block, s.t, dist, margin);
             }
         }
@@ -439,7 +441,8 @@ impl<'a> Checker<'a> {
             } else {
                 -o.cut_tolerance_mm
             };
-            if gap < asked && worst.is_none_or(|(v, l)| gap - asked < v - l) {
+            if gap < asked - DISTANCE_TOLERANCE_MM && worst.is_none_or(|(v, l)| gap - asked < v - l)
+            {
                 worst = Some((gap, asked));
             }
             cleared |= gap >= o.mandrel_margin_mm;

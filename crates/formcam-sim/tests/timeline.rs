@@ -201,10 +201,8 @@ fn a_limit_and_a_too_fast_block_are_found_at_their_block_and_line() {
         assert_eq!((far.value, far.limit), (3010.5, 3000.0));
         // The first violation leads the line.
         assert!(
-            r.line().starts_with(&format!(
-                "{} violations: first velocity",
-                r.violations.len()
-            )),
+            r.line()
+                .starts_with(&format!("{} violations: velocity", r.violations.len())),
             "{}",
             r.line()
         );

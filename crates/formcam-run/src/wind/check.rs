@@ -18,7 +18,7 @@ pub(super) struct Checked {
 
 impl Checked {
     /// The line's end: `; checked: clean (T ms)`, or the number of
-    /// violations and the first.
+    /// violations and the first to happen, told where it is worst.
     pub(super) fn verdict(&self) -> String {
         let ms = self.time.as_secs_f64() * 1e3;
         match self.report.violations.first() {
@@ -26,7 +26,7 @@ impl Checked {
             Some(first) => {
                 let k = self.report.violations.len();
                 let s = if k == 1 { "" } else { "s" };
-                format!("; checked: {k} violation{s} ({ms:.1} ms), first {first}")
+                format!("; checked: {k} violation{s} ({ms:.1} ms): {first}")
             }
         }
     }

@@ -18,7 +18,7 @@ use super::pairs::{Pair, pairs};
 use super::radial::Radial;
 use super::solids::{Body, Mount, machine_bodies, reach};
 use super::sweep::Sweep;
-use crate::{BlockSpan, SimError, Timeline, Violation, ViolationKind};
+use crate::{BlockSpan, DISTANCE_TOLERANCE_MM, SimError, Timeline, Violation, ViolationKind};
 
 /// How many sampling steps beyond the margin the exact query looks.
 const LOOK_AHEAD: f64 = 8.0;
@@ -218,7 +218,7 @@ impl Collisions {
                         None => slack[k] = ahead,
                         Some(d) => {
                             slack[k] = d - self.margin;
-                            if d < self.margin {
+                            if d < self.margin - DISTANCE_TOLERANCE_MM {
                                 tallies[k].hit(b.index, b.start_s + f * b.duration_s, d);
                             }
                         }
@@ -253,7 +253,7 @@ impl Collisions {
                     let (si, sj) = (self.bodies[i].shape(g.stage), self.bodies[j].shape(g.stage));
                     let (pi, pj) = (&place.poses[i], &place.poses[j]);
                     if let Some(d) = distance(pi, si, pj, sj, self.margin + ahead)
-                        && d < self.margin
+                        && d < self.margin - DISTANCE_TOLERANCE_MM
                     {
                         tally.hit(b.index, b.start_s + f * b.duration_s, d);
                     }

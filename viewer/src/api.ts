@@ -3,6 +3,7 @@
 // comes through `answer`: fetched from the server, or in a report
 // (`formcam report`) looked up in the data inlined in the page.
 import * as report from './report';
+import type { BlocksBody, MandrelScene, OverlaysBody, Shown, SolidShape, Violations as ViolationsBody } from './generated';
 
 /** How a URL's answer is obtained: `fetch` from `formcam view`, or the
  * report's inlined data. Call sites name `/api/...`; fetched relative to
@@ -17,65 +18,65 @@ export function relative(url: string): string {
 /** What the page is: `formcam view` (served) or `formcam report` (a file). */
 export const PAGE_NAME = report.isReport() ? 'formcam report' : 'formcam view';
 
-/** An axis of the timeline. */
-export interface AxisHead { name: string; unit: 'deg' | 'mm' }
+// The types of the JSON the server sends are generated from its Rust types
+// (crates/formcam-view/src/typescript.rs, by ts-rs) into `generated/`;
+// exported below under the names the page uses.
 
-/** The state at one time, computed by the server. */
-export interface Sample {
-  t: number;
-  block: number;
-  line: number;
-  /** Degrees for rotary axes, mm for linear ones (the machine's order). */
-  axes: number[];
-  /** Every link's world pose: [x, y, z, qx, qy, qz, qw]. */
-  poses: number[][];
-  /** Every key point's world position, mm. */
-  points: number[][];
-  /** Points of `/api/band` laid at this time (absent without a band). */
-  laid?: number;
-}
+export type {
+  AxisHead,
+  AxisPlots,
+  AxisRange,
+  Band,
+  CorrectionBody,
+  DeviationMap,
+  DresserPass,
+  DresserSample,
+  DressingBody,
+  EyeTrajectory,
+  KindBody,
+  Knots,
+  LaidTable,
+  LinkScene,
+  MachineScene,
+  MandrelScene,
+  MeridianPlot,
+  MrrPlot,
+  NodeCounts,
+  NodeMarks,
+  PathBand,
+  PathBody,
+  Placement,
+  PullPlot,
+  ResultKind,
+  RoundMap,
+  SampleTables,
+  SectionStats,
+  Solid,
+  SurfaceMesh,
+  TimelineBody,
+  TimelineHead,
+  WindingPlots,
+} from './generated';
 
-/** `/api/timeline`. */
-export interface TimelineBody {
-  duration_s: number;
-  blocks: number;
-  axes: AxisHead[];
-  links: string[];
-  points: string[];
-  payout: number;
-  samples: Sample[];
-}
-
-/** A solid in its link's frame. */
-export type Solid = { origin: number[]; color: string } & (
-  | { shape: 'box'; size: [number, number, number] }
-  | { shape: 'cylinder'; radius: number; length: number }
-  | { shape: 'sphere'; radius: number }
-  | MeshShape
-);
-
-/** `/api/machine`. */
-export interface MachineScene {
-  name: string;
-  links: { name: string; parent: number | null; solids: Solid[] }[];
-  mandrel: number;
-  payout: number;
-}
-
-/** `/api/mandrel`: in the mandrel link's frame, z along its axis. */
-export interface MandrelScene {
-  link: number;
-  meridian: [number, number][];
-  path: [number, number, number][];
-  path_points: number;
-}
+/** The state at one time (`/api/sample`, `/api/timeline`'s samples), with the band laid then. */
+export type Sample = Shown;
 
 /** `/api/blocks`. */
-export interface Blocks { starts: number[]; ends: number[]; lines: number[] }
+export type Blocks = BlocksBody;
+
+/** `/api/overlays`: which of `violations`, `eye` and `band` the result has. */
+export type Overlays = OverlaysBody;
 
 /**
- * A violation as the check reports it. Kinds the page does not know (a
- * collision naming `links`, say) are still listed.
+ * A mesh solid of `/api/machine`: the file the machine names, its
+ * triangles at `/api/mesh/N` (`mesh`), or why it could not be read.
+ */
+export type MeshShape = Extract<SolidShape, { shape: 'mesh' }>;
+
+/**
+ * A violation as the check reports it (the server passes each on as
+ * `check.json` or formcam-sim's check writes it, with its `spans`): kinds
+ * the page does not know (a collision naming `links`, say) are still listed.
  */
 export interface Violation {
   kind: string;
@@ -94,30 +95,8 @@ export interface Violation {
   spans: [number, number][];
 }
 
-/** `/api/violations`. */
-export interface Violations {
-  source: string;
-  /** The checks the view ran (`source` `check`); empty for `check.json`. */
-  checks?: string[];
-  /** Why the view left a check out, else null. */
-  unchecked?: string | null;
-  clean: boolean;
-  violations: Violation[];
-  limits: { axis: string; unit: string; min: number | null; max: number | null }[];
-}
-
-/** `/api/eye`: the payout point's path in the world, mm. */
-export interface EyeTrajectory { points: [number, number, number][]; times: number[]; ends: number }
-
-/** `/api/band`: the band's path over the whole program, in the mandrel link's frame. */
-export interface Band {
-  link: number;
-  width_mm: number;
-  points: [number, number, number][];
-  /** Where each layer's points start. */
-  layers: number[];
-  table_points: number;
-}
+/** `/api/violations`: the generated type, each violation as [`Violation`]. */
+export type Violations = Omit<ViolationsBody, 'violations'> & { violations: Violation[] };
 
 /** `url` as JSON, or null when the result has none (404). */
 export async function optional<T>(url: string): Promise<T | null> {
@@ -145,22 +124,6 @@ export async function text(url: string): Promise<string> {
 export async function mandrel(): Promise<MandrelScene | null> {
   const r = await answer('/api/mandrel');
   return r.ok ? ((await r.json()) as MandrelScene) : null;
-}
-
-/**
- * A mesh solid of `/api/machine`: the file the machine names, its
- * triangles at `/api/mesh/N` (`mesh`), or why it could not be read.
- */
-export interface MeshShape {
-  shape: 'mesh';
-  file: string;
-  /** N of `/api/mesh/N`; absent when the file could not be read. */
-  mesh?: number;
-  /** The file's triangles, and those drawn (fewer past the server's cap). */
-  triangles: number;
-  drawn: number;
-  /** Why it is not drawn, naming the file. */
-  error?: string;
 }
 
 /** `/api/mesh/N`: positions (mm, the visual's frame) and triangles' corners. */

@@ -11,6 +11,7 @@ import uPlot from 'uplot';
 import './compare.css';
 import { COLOURS, align, chart, counts } from './plots';
 import type { PlotsBody } from './plots';
+import type { CorrectionBody, DressingBody } from './api';
 
 /** A run to compare: its name and the base URL its result is served at
  * (`runs/<name>/`). */
@@ -228,7 +229,7 @@ function windingOverlays(p: [PlotsBody, PlotsBody]): Overlay[] {
 }
 
 /** `api/dressing`'s removal rate and feed per step. */
-interface DressingMrr { mrr: { pass: number[]; z: number[]; mrr: number[]; feed: number[] } }
+type DressingMrr = Pick<DressingBody, 'mrr'>;
 
 /** A dressing result's removal rate and feed against Z, a curve per pass. */
 function dressingOverlays(d: [DressingMrr, DressingMrr]): Overlay[] {
@@ -250,11 +251,7 @@ function dressingOverlays(d: [DressingMrr, DressingMrr]): Overlay[] {
 }
 
 /** `api/correction`: per section the deviations, and the report's rounds or runs. */
-interface CorrectionSummary {
-  sections: { name: string; min: number; max: number; rms: number }[];
-  rounds: unknown[];
-  report: Record<string, unknown>;
-}
+type CorrectionSummary = Pick<CorrectionBody, 'sections' | 'rounds' | 'report'>;
 
 /** A correction's deviation per section and per round (a closed loop) or
  * run (the report's history). */

@@ -16,32 +16,10 @@ import * as api from './api';
 import { View2d, boundsOf, esc } from './view2d';
 import { COLOURS, align, chart, counts, cursorHook, legendAt } from './plots';
 import { DeviationSurface, NODE_KINDS } from './surface3d';
-import type { NodeMarks, SurfaceMesh } from './surface3d';
 
-/** One CMM report's points and deviations (DeviationMap in
- * crates/formcam-view/src/correction.rs). */
-interface DeviationMap {
-  x: number[];
-  y: number[];
-  z: number[];
-  deviation: number[];
-  section: number[];
-  sections: { name: string; points: number; min: number; max: number; rms: number }[];
-  /** The deviation at each vertex of the surface (empty without one). */
-  vertex_deviation: number[];
-}
-
-/** `/api/correction` (crates/formcam-view/src/correction.rs). */
-interface CorrectionBody extends DeviationMap {
-  measurements: string;
-  scenario: string | null;
-  program: string | null;
-  rounds: (DeviationMap & { iteration: number; measurements: string; program: string })[];
-  report: Record<string, unknown>;
-  surface: SurfaceMesh | null;
-  after: DeviationMap | null;
-  nodes: NodeMarks | null;
-}
+/** `/api/correction` (generated from crates/formcam-view/src/correction.rs). */
+type CorrectionBody = api.CorrectionBody;
+type DeviationMap = api.DeviationMap;
 
 type Row = Record<string, unknown>;
 type Which = 'before' | 'after';

@@ -15,27 +15,9 @@ import { COLOURS, chart, counts, cursorHook, legendAt } from './plots';
 import { CutSoFar, sampleAt } from './forming';
 import { ProgramView } from './program';
 
-/** `/api/dressing` (crates/formcam-view/src/dressing.rs). */
-interface DressingBody {
-  profile: number[][];
-  initial: number[][];
-  final_contour: number[][];
-  contours: number[][][];
-  passes: { pass: number; path: number[][]; corner_offset: [number, number]; corner_radius: number }[];
-  mrr: {
-    pass: number[]; z: number[]; x: number[]; mrr: number[]; feed: number[]; mrr_uncontrolled: number[];
-    feed_uncontrolled: number | null; target: number | null;
-  };
-  duration_s: number;
-  t: number[];
-  points: number[][];
-  lines: number[];
-  block_pass: number[];
-  program: string;
-}
-
-/** `/api/dressing/sample`. */
-interface DresserSample { t: number; block: number; line: number; dresser: [number, number] }
+/** `/api/dressing` and `/api/dressing/sample` (generated from crates/formcam-view/src/dressing.rs). */
+type DressingBody = api.DressingBody;
+type DresserSample = api.DresserSample;
 
 /** Where hovering a plot puts the marker on the profile. */
 interface Marker {

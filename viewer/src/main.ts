@@ -113,7 +113,7 @@ async function main(): Promise<void> {
   ]);
   // The overlays after the result (no more than six requests at once),
   // only those the result has: no request fails on a normal load.
-  const has = await api.json<{ violations: boolean; eye: boolean; band: boolean }>('/api/overlays');
+  const has = await api.json<api.Overlays>('/api/overlays');
   const [violations, eye, band] = await Promise.all([
     has.violations ? api.optional<api.Violations>('/api/violations') : null,
     has.eye ? api.optional<api.EyeTrajectory>('/api/eye') : null,
@@ -410,7 +410,8 @@ function clock(t: number): string {
 /** The view of the result's kind: a winding result's 3-D view, or the 2-D
  * view of a dressing or correction result in place of it; or the studio. */
 async function start(): Promise<void> {
-  const { kind } = await api.json<{ kind: string }>('/api/kind');
+  // `formcam studio` answers `studio`, a result's view its kind.
+  const { kind } = await api.json<{ kind: api.ResultKind | 'studio' }>('/api/kind');
   if (kind === 'studio') {
     // `formcam studio`: the job editor, results shown in a frame of their own.
     $('app').hidden = true;

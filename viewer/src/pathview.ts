@@ -10,15 +10,8 @@ import { Scene } from './scene';
 import type { View } from './scene';
 import { WindingPlots } from './plots';
 
-/** `/api/path` (crates/formcam-view/src/pathview.rs). */
-export interface PathBody {
-  /** Every link's world pose as shown. */
-  poses: number[][];
-  /** `home`, `axes.csv row 1` or `none` (no machine). */
-  pose: string;
-  band: api.Band & { circuits: number };
-  eye: [number, number, number][] | null;
-}
+/** `/api/path` (generated from crates/formcam-view/src/pathview.rs). */
+export type PathBody = api.PathBody;
 
 /** What `window.formcam.state()` returns for this kind. */
 export interface PathState {

@@ -8,21 +8,8 @@ import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
 import * as api from './api';
 
-/** `/api/plots` (crates/formcam-view/src/plots.rs). */
-export interface PlotsBody {
-  meridian: { layer: number; z: number[]; alpha_deg: number[]; thickness: number[] }[];
-  pull: { layer: number; x: number[]; u: number[] }[];
-  axes: {
-    names: string[];
-    units: string[];
-    velocity_units: string[];
-    t: number[];
-    position: number[][];
-    velocity: (number | null)[][];
-    block_s: number[];
-    block_line: number[];
-  } | null;
-}
+/** `/api/plots` (generated from crates/formcam-view/src/plots.rs). */
+export type PlotsBody = api.WindingPlots;
 
 /** What tests read: per plot, the points of each series drawn. */
 export interface PlotsProbe {

@@ -6,6 +6,7 @@
 // `/api/sample?t=T` (the axes, block, line and band laid exactly; the poses
 // and key points interpolated between knots within the tolerance the
 // report states) and `/api/dressing/sample?t=T` (exact: linear per block).
+import type { SampleTables } from './generated';
 
 /** Whether this page is a report (its answers inlined). */
 export function isReport(): boolean {
@@ -89,13 +90,6 @@ function partition(a: ArrayLike<number>, n: number, pred: (x: number) => boolean
     else hi = mid;
   }
   return lo;
-}
-
-/** `report:samples` (crates/formcam-view/src/report.rs, `SampleTables`). */
-interface SampleTables {
-  axes: { width: number; rows: number; starts: string; values: string };
-  knots: { count: number; first: number[]; columns: number[]; links: number; points: number; t: string; values: string };
-  band?: { spindle: number; keys: number[]; spans: [number, number, number][]; slack_deg: number };
 }
 
 /** A winding result's state at any time, from the inlined tables. */

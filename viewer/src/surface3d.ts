@@ -7,29 +7,7 @@
 // fits); a frame is drawn only when something changed.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-
-/** `/api/correction`'s `surface` (SurfaceMesh in crates/formcam-view/src/correction.rs). */
-export interface SurfaceMesh {
-  nu: number;
-  nv: number;
-  vertices: [number, number, number][];
-  triangles: [number, number, number][];
-}
-
-/** Where a program node lies (formcam-correct's `Placement`). */
-export type Placement = 'inside' | 'extrapolated' | 'outside' | 'unknown';
-
-/** `/api/correction`'s `nodes` (NodeMarks). */
-export interface NodeMarks {
-  file: string;
-  x: number[];
-  y: number[];
-  z: number[];
-  placement: Placement[];
-  moved: boolean[];
-  every: number;
-  counts: { nodes: number; moved: number; inside: number; extrapolated: number; outside: number; unknown: number };
-}
+import type { NodeMarks, Placement, SurfaceMesh } from './api';
 
 /** The measured points and their sections. */
 export interface MeasuredPoints {

@@ -123,7 +123,9 @@ pub const EDGE_TOLERANCE_MM: f64 = 0.01;
 /// Where a node lies relative to the measured area (`inside`,
 /// `extrapolated`, `outside`, `unknown` in the node status file and the
 /// view).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, strum::IntoStaticStr)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, strum::IntoStaticStr, ts_rs::TS,
+)]
 #[serde(rename_all = "lowercase")]
 #[strum(serialize_all = "lowercase")]
 pub enum Placement {

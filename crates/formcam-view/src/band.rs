@@ -13,6 +13,7 @@ use formcam_results::names;
 use formcam_results::winding::{AXES, BLOCKS, EYE, axes, blocks, eye};
 use serde::Serialize;
 use serde_json::{Map, Value};
+use ts_rs::TS;
 
 use crate::ViewError;
 use crate::scene::thin;
@@ -28,7 +29,7 @@ pub const BAND_POINTS: usize = 20_000;
 const LAID_SLACK_DEG: f64 = 1e-3;
 
 /// The band over the whole program, for drawing.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, TS)]
 pub struct Band {
     /// The link carrying the mandrel (the points' frame).
     pub link: usize,

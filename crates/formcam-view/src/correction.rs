@@ -20,6 +20,7 @@ use formcam_results::correction::{NODE_STATUS, PREDICTED, node_status};
 use formcam_results::names;
 use serde::Serialize;
 use serde_json::{Map, Value};
+use ts_rs::TS;
 
 use crate::{Table, ViewError};
 
@@ -28,7 +29,7 @@ use crate::{Table, ViewError};
 pub const NODE_MARKS: usize = 100_000;
 
 /// What `/api/correction` sends.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct CorrectionBody {
     /// The measurement file shown (the report's `measurements`, or the last
     /// round's CMM report), its path made plain ([`plain_path`]).
@@ -46,6 +47,7 @@ pub struct CorrectionBody {
     pub rounds: Vec<RoundMap>,
     /// The report's keys (`max_deviation_mm`, `history`, or a loop's
     /// `rounds` and `section_study`, ...), as written.
+    #[ts(type = "Record<string, unknown>")]
     pub report: Map<String, Value>,
     /// The nominal surface of the map's sections, `None` where they make
     /// no grid (fewer than two sections, ...).
@@ -62,7 +64,7 @@ pub struct CorrectionBody {
 /// The nominal surface meshed from the measured sections: the vertices of
 /// formcam-correct's [`Grid`] as measured (`points_per_section` a row,
 /// section after section in their spatial order), two triangles per facet.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct SurfaceMesh {
     /// Points per section (vertices a row).
     pub nu: usize,
@@ -76,7 +78,7 @@ pub struct SurfaceMesh {
 }
 
 /// The program's nodes marked by what the correction did with them.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct NodeMarks {
     /// The file read (`node-status.csv`).
     pub file: String,
@@ -97,7 +99,7 @@ pub struct NodeMarks {
 }
 
 /// The nodes of a program counted by what happened to them.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, TS)]
 pub struct NodeCounts {
     /// Every movable node.
     pub nodes: usize,
@@ -116,7 +118,7 @@ pub struct NodeCounts {
 
 /// The measured points of one CMM report at their nominal places, with
 /// their deviations.
-#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, TS)]
 pub struct DeviationMap {
     /// Every measured point's nominal `x`, mm.
     pub x: Vec<f64>,
@@ -137,7 +139,7 @@ pub struct DeviationMap {
 }
 
 /// One round of a closed loop: what the CMM saw of the part it made.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct RoundMap {
     /// The round (0: the nominal program, before any correction).
     pub iteration: usize,
@@ -151,7 +153,7 @@ pub struct RoundMap {
 }
 
 /// One section's deviations.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct SectionStats {
     /// The section's name.
     pub name: String,

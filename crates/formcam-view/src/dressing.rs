@@ -13,6 +13,7 @@ use formcam_nc::{AxisSpec, Dialect, Motion, read_gcode_lines_in};
 use formcam_sim::{FeedRule, Timeline};
 use serde::Serialize;
 use serde_json::{Map, Value};
+use ts_rs::TS;
 
 use formcam_results::dressing::{
     CONTOUR_FINAL, CONTOUR_INITIAL, CONTOUR_PASSES, DRESSER, MRR, PROFILE, contour_passes, dresser,
@@ -34,7 +35,7 @@ pub struct DressingView {
 }
 
 /// What `/api/dressing` sends: the drawing and the program's time.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct DressingBody {
     /// The profile (`profile.csv`): `[z, x]`, mm.
     pub profile: Vec<[f64; 2]>,
@@ -67,7 +68,7 @@ pub struct DressingBody {
 }
 
 /// One pass of the dresser.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct DresserPass {
     /// The pass's number (1-based).
     pub pass: usize,
@@ -81,7 +82,7 @@ pub struct DresserPass {
 
 /// The removal rate and feed per step, with feed control (the program's
 /// feeds) and without (the constant feed of the same time).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct MrrPlot {
     /// The step's pass (1-based).
     pub pass: Vec<usize>,
@@ -104,7 +105,7 @@ pub struct MrrPlot {
 }
 
 /// The dresser at one time.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct DresserSample {
     /// The time, s.
     pub t: f64,

@@ -18,7 +18,7 @@ use crate::ViewError;
 /// listing its `rounds`) and no `summary.json`; a dressing's `summary.json`
 /// has `dressing_time_s`; any other `summary.json` is a winding result's, a
 /// [`ResultKind::Path`] one without `program_file`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, ts_rs::TS)]
 #[serde(rename_all = "lowercase")]
 pub enum ResultKind {
     /// `formcam wind`: the machine, the program, the path.

@@ -29,6 +29,7 @@ mod scene;
 mod server;
 mod table;
 mod timeline;
+mod typescript;
 mod violations;
 
 pub use band::{BAND_POINTS, Band};
@@ -58,4 +59,5 @@ pub use server::{
 };
 pub use table::Table;
 pub use timeline::{AxisHead, Sample, Timeline, TimelineHead};
+pub use typescript::{TS_INDEX, TsFile, typescript};
 pub use violations::{AxisRange, Violations};

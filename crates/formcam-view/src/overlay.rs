@@ -5,6 +5,7 @@
 use std::path::Path;
 
 use serde::Serialize;
+use ts_rs::TS;
 
 use crate::ViewError;
 use crate::band::Band;
@@ -17,7 +18,7 @@ use crate::violations::Violations;
 pub const EYE_POINTS: usize = 20_000;
 
 /// The payout point's path over the whole program (`/api/eye`).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct EyeTrajectory {
     /// World positions, mm: at the program's start and at block ends
     /// (thinned evenly to at most [`EYE_POINTS`] for drawing).
@@ -54,13 +55,14 @@ impl EyeTrajectory {
 
 /// A sample as the page gets it: the timeline's, and how many band points
 /// are laid then.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct Shown {
     /// The timeline's sample.
     #[serde(flatten)]
     pub sample: Sample,
     /// Points of `/api/band` laid at this time (absent without a band).
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[ts(optional)]
     pub laid: Option<usize>,
 }
 

@@ -15,6 +15,7 @@ use formcam_results::winding::{AXES, EYE, eye, path};
 use nalgebra::{Isometry3, Point3};
 use serde::Serialize;
 use serde_json::{Map, Value};
+use ts_rs::TS;
 
 use crate::ViewError;
 use crate::band::BAND_POINTS;
@@ -24,7 +25,7 @@ use crate::scene::{LinkScene, MachineScene, thin};
 use crate::table::Table;
 
 /// What `/api/path` sends.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, TS)]
 pub struct PathBody {
     /// Every link's world pose `[x, y, z, qx, qy, qz, qw]` as shown.
     pub poses: Vec<[f64; 7]>,
@@ -39,7 +40,7 @@ pub struct PathBody {
 }
 
 /// The band of a path-only result (as `/api/band`'s, without laying times).
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, TS)]
 pub struct PathBand {
     /// The link carrying the mandrel (the points' frame).
     pub link: usize,

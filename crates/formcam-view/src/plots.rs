@@ -12,12 +12,13 @@ use formcam_results::names;
 use formcam_results::winding::{EYE, PATH, eye, path};
 use formcam_sim::Timeline;
 use serde::Serialize;
+use ts_rs::TS;
 
 use crate::ViewError;
 use crate::table::Table;
 
 /// What `/api/plots` sends.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct WindingPlots {
     /// Per winding layer, along the meridian (`path.csv`).
     pub meridian: Vec<MeridianPlot>,
@@ -29,7 +30,7 @@ pub struct WindingPlots {
 }
 
 /// One layer's pass along the meridian.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct MeridianPlot {
     /// The layer's number (1 for a single-layer job).
     pub layer: usize,
@@ -42,7 +43,7 @@ pub struct MeridianPlot {
 }
 
 /// One layer's pull speed over a circuit.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct PullPlot {
     /// The layer's number.
     pub layer: usize,
@@ -53,7 +54,7 @@ pub struct PullPlot {
 }
 
 /// Each axis against time and each block's time, from a [`Timeline`].
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct AxisPlots {
     /// The axes: name, position unit, velocity unit.
     pub names: Vec<String>,

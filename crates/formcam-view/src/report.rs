@@ -15,6 +15,7 @@ use formcam_results::names;
 use nalgebra::UnitQuaternion;
 use serde::Serialize;
 use serde_json::{Map, Value};
+use ts_rs::TS;
 
 use crate::ViewError;
 use crate::folder::{ResultKind, read_summary};
@@ -373,7 +374,7 @@ fn floats(v: &[f64]) -> String {
 }
 
 /// What the page needs to answer `/api/sample?t=T` itself.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, TS)]
 pub struct SampleTables {
     /// The program's axes at every block boundary (the simulator's points).
     pub axes: AxisTable,
@@ -381,12 +382,13 @@ pub struct SampleTables {
     pub knots: Knots,
     /// How many band points are laid at a spindle angle (absent without a band).
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[ts(optional)]
     pub band: Option<LaidTable>,
 }
 
 /// The axes at block boundaries: block `i` runs from `starts[i]` to
 /// `starts[i + 1]`, the axes linear from row `i` to row `i + 1`.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, TS)]
 pub struct AxisTable {
     /// Axes per row.
     pub width: usize,
@@ -400,7 +402,7 @@ pub struct AxisTable {
 
 /// The poses at knots: linear (translations, key points) and spherical
 /// (orientations) interpolation between them.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, TS)]
 pub struct Knots {
     /// Knots.
     pub count: usize,
@@ -426,7 +428,7 @@ pub struct Knots {
 }
 
 /// The band's laying table (the server's `Band::laid`).
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, TS)]
 pub struct LaidTable {
     /// The spindle axis (an index into the axes).
     pub spindle: usize,

@@ -9,12 +9,13 @@ use formcam_machine::{Machine, Shape, read_visual_mesh};
 use formcam_results::Column;
 use formcam_results::winding::path;
 use serde::Serialize;
+use ts_rs::TS;
 
 use crate::ViewError;
 use crate::mesh::{DrawnMesh, MESH_TRIANGLES};
 
 /// The machine's solids.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, TS)]
 pub struct MachineScene {
     /// The machine's name.
     pub name: String,
@@ -27,7 +28,7 @@ pub struct MachineScene {
 }
 
 /// One link's solids.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, TS)]
 pub struct LinkScene {
     /// Name.
     pub name: String,
@@ -38,7 +39,7 @@ pub struct LinkScene {
 }
 
 /// A solid placed in its link's frame.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, TS)]
 pub struct Solid {
     /// Its shape.
     #[serde(flatten)]
@@ -50,7 +51,7 @@ pub struct Solid {
 }
 
 /// The shapes the page draws.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, TS)]
 #[serde(tag = "shape", rename_all = "lowercase")]
 pub enum SolidShape {
     /// A box centred on the origin: edge lengths, mm.
@@ -76,6 +77,7 @@ pub enum SolidShape {
         file: String,
         /// Its index for `/api/mesh/N`; none when it could not be read.
         #[serde(skip_serializing_if = "Option::is_none")]
+        #[ts(optional)]
         mesh: Option<usize>,
         /// The file's triangles.
         triangles: usize,
@@ -84,6 +86,7 @@ pub enum SolidShape {
         drawn: usize,
         /// Why the file could not be read (naming it as resolved).
         #[serde(skip_serializing_if = "Option::is_none")]
+        #[ts(optional)]
         error: Option<String>,
     },
 }
@@ -173,7 +176,7 @@ fn mesh_solid(
 }
 
 /// The mandrel in its link's frame (`z` along its axis).
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, TS)]
 pub struct MandrelScene {
     /// The link carrying it.
     pub link: usize,

@@ -19,6 +19,7 @@ use hyper::server::conn::http1;
 use hyper_util::rt::{TokioIo, TokioTimer};
 use hyper_util::service::TowerToHyperService;
 use serde::Serialize;
+use ts_rs::TS;
 
 use crate::ViewError;
 use crate::correction::CorrectionBody;
@@ -243,7 +244,7 @@ impl View {
         let seg: Vec<&str> = target.segments.iter().map(String::as_str).collect();
         match seg.as_slice() {
             ["api", "result"] => Ok((JSON, self.summary.clone())),
-            ["api", "kind"] => Ok((JSON, json(&serde_json::json!({ "kind": self.kind })))),
+            ["api", "kind"] => Ok((JSON, json(&KindBody { kind: self.kind }))),
             [
                 "api",
                 "machine" | "mandrel" | "program" | "timeline" | "sample" | "blocks",
@@ -259,11 +260,11 @@ impl View {
             // page asks only for those.
             ["api", "overlays"] => Ok((
                 JSON,
-                json(&serde_json::json!({
-                    "violations": self.overlay.is_some(),
-                    "eye": self.overlay.is_some(),
-                    "band": self.overlay.as_ref().is_some_and(|o| o.band.is_some()),
-                })),
+                json(&OverlaysBody {
+                    band: self.overlay.as_ref().is_some_and(|o| o.band.is_some()),
+                    eye: self.overlay.is_some(),
+                    violations: self.overlay.is_some(),
+                }),
             )),
             ["api", "plots"] => self
                 .plots
@@ -388,19 +389,44 @@ impl View {
 }
 
 /// `/api/timeline`: what the arrays mean, then the samples.
-#[derive(Serialize)]
-struct TimelineBody {
+#[derive(Serialize, TS)]
+pub(crate) struct TimelineBody {
+    /// What the samples' arrays mean.
     #[serde(flatten)]
     head: TimelineHead,
+    /// The samples at equal steps from the start to the end.
     samples: Vec<Shown>,
 }
 
 /// `/api/blocks`: per block its start, end (s) and program line.
-#[derive(Serialize)]
-struct BlocksBody<'a> {
+#[derive(Serialize, TS)]
+pub(crate) struct BlocksBody<'a> {
+    /// Per block: its start, s.
     starts: Vec<f64>,
+    /// Per block: its end, s.
     ends: Vec<f64>,
+    /// Per block: its line in the program text (1-based).
     lines: &'a [usize],
+}
+
+/// `/api/kind`: what the result folder holds.
+#[derive(Serialize, TS)]
+pub(crate) struct KindBody {
+    /// The result's kind.
+    kind: ResultKind,
+}
+
+/// `/api/overlays`: which of `/api/violations`, `/api/eye` and `/api/band`
+/// the result has (the page asks only for those); the fields in the order
+/// of their names, as a JSON map writes them.
+#[derive(Serialize, TS)]
+pub(crate) struct OverlaysBody {
+    /// Whether `/api/band` answers (a result with its circuit tables).
+    band: bool,
+    /// Whether `/api/eye` answers (a result with a program).
+    eye: bool,
+    /// Whether `/api/violations` answers (a result with a program).
+    violations: bool,
 }
 
 const JSON: &str = "application/json";

@@ -9,6 +9,7 @@ use formcam_nc::{Dialect, read_cldata_lines, read_gcode_lines_in};
 use formcam_sim::{FeedRule, SimError, program_axes};
 use nalgebra::Isometry3;
 use serde::Serialize;
+use ts_rs::TS;
 
 use crate::ViewError;
 
@@ -23,7 +24,7 @@ pub struct Timeline {
 }
 
 /// The state at one time: what the page shows.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct Sample {
     /// Time since the program's start, s.
     pub t: f64,
@@ -40,7 +41,7 @@ pub struct Sample {
 }
 
 /// What the samples' arrays mean.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct TimelineHead {
     /// The program's time, s.
     pub duration_s: f64,
@@ -57,11 +58,12 @@ pub struct TimelineHead {
 }
 
 /// An axis of the timeline.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct AxisHead {
     /// NC address.
     pub name: String,
     /// `deg` or `mm`.
+    #[ts(type = "\"deg\" | \"mm\"")]
     pub unit: &'static str,
 }
 

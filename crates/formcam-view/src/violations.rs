@@ -15,13 +15,14 @@ use formcam_results::names;
 use formcam_sim::{AxisLimits, MandrelCheck, check_text_with, check_timeline};
 use serde::Serialize;
 use serde_json::Value;
+use ts_rs::TS;
 
 use crate::ViewError;
 use crate::folder::{ProgramFile, RunFolder};
 use crate::timeline::Timeline;
 
 /// `/api/violations`.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, TS)]
 pub struct Violations {
     /// `check.json` when read from the folder, else `check` (run by the view).
     pub source: &'static str,
@@ -39,17 +40,19 @@ pub struct Violations {
     /// Every violation as the report writes it (`kind`, `axis` or `links`,
     /// `block`, `line`, `time_s`, ...), with `spans`: the `[start, end]`
     /// times (s) of its first and worst block.
+    #[ts(type = "Array<Record<string, unknown>>")]
     pub violations: Vec<Value>,
     /// Every axis's position limits in NC units (`null` where unlimited).
     pub limits: Vec<AxisRange>,
 }
 
 /// An axis's position limits.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, TS)]
 pub struct AxisRange {
     /// NC address.
     pub axis: String,
     /// `deg` or `mm`.
+    #[ts(type = "\"deg\" | \"mm\"")]
     pub unit: &'static str,
     /// Lower limit (`None` when unlimited).
     pub min: Option<f64>,

@@ -1,0 +1,43 @@
+// Generated from formcam-view's types (crates/formcam-view/src/typescript.rs):
+// `FORMCAM_BLESS=1 cargo test -p formcam-view --test ts_types` writes it again.
+
+export type { AxisHead } from './AxisHead';
+export type { AxisPlots } from './AxisPlots';
+export type { AxisRange } from './AxisRange';
+export type { AxisTable } from './AxisTable';
+export type { Band } from './Band';
+export type { BlocksBody } from './BlocksBody';
+export type { CorrectionBody } from './CorrectionBody';
+export type { DeviationMap } from './DeviationMap';
+export type { DresserPass } from './DresserPass';
+export type { DresserSample } from './DresserSample';
+export type { DressingBody } from './DressingBody';
+export type { EyeTrajectory } from './EyeTrajectory';
+export type { KindBody } from './KindBody';
+export type { Knots } from './Knots';
+export type { LaidTable } from './LaidTable';
+export type { LinkScene } from './LinkScene';
+export type { MachineScene } from './MachineScene';
+export type { MandrelScene } from './MandrelScene';
+export type { MeridianPlot } from './MeridianPlot';
+export type { MrrPlot } from './MrrPlot';
+export type { NodeCounts } from './NodeCounts';
+export type { NodeMarks } from './NodeMarks';
+export type { OverlaysBody } from './OverlaysBody';
+export type { PathBand } from './PathBand';
+export type { PathBody } from './PathBody';
+export type { Placement } from './Placement';
+export type { PullPlot } from './PullPlot';
+export type { ResultKind } from './ResultKind';
+export type { RoundMap } from './RoundMap';
+export type { Sample } from './Sample';
+export type { SampleTables } from './SampleTables';
+export type { SectionStats } from './SectionStats';
+export type { Shown } from './Shown';
+export type { Solid } from './Solid';
+export type { SolidShape } from './SolidShape';
+export type { SurfaceMesh } from './SurfaceMesh';
+export type { TimelineBody } from './TimelineBody';
+export type { TimelineHead } from './TimelineHead';
+export type { Violations } from './Violations';
+export type { WindingPlots } from './WindingPlots';

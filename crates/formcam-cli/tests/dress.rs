@@ -68,6 +68,7 @@ fn the_seed_job_writes_its_files() {
             "contour_initial.csv",
             "contour_passes.csv",
             "dresser.csv",
+            "job.toml",
             "mrr.csv",
             "mrr.svg",
             "profile.csv",
@@ -77,6 +78,8 @@ fn the_seed_job_writes_its_files() {
             "summary.json"
         ]
     );
+    // The job as it ran, kept with its result.
+    assert_eq!(read(&out, "job.toml"), EXAMPLE);
     // Every table heads the wheel's axes as the programs do: z, x.
     for file in names.iter().filter(|n| n.ends_with(".csv")) {
         let (h, rows) = csv(&read(&out, file));

@@ -226,7 +226,13 @@ fn a_folder_holds_one_whole_run_and_nothing_foreign_is_lost() {
     ok("wind path", &into_out(&dir, &["wind", "path"], "job.toml"));
     assert_eq!(
         names_in(&out),
-        vec![".formcam-run", "path.csv", "path.svg", "summary.json"]
+        vec![
+            ".formcam-run",
+            "job.toml",
+            "path.csv",
+            "path.svg",
+            "summary.json"
+        ]
     );
     // Nothing left beside the folder: no claim, no temporary folder.
     assert_eq!(names_in(&dir), vec!["job.toml", "out"]);

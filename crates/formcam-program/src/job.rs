@@ -25,8 +25,9 @@ use crate::checks::{Check, ChecksJob};
 /// the machine, the motion, the post and the checks it accepts.
 #[derive(Debug, Clone)]
 pub struct WindJob {
-    /// How the job is named in the program's header and the summary (the
-    /// job file's path as given; `job.toml` until [`WindJob::named`]).
+    /// How the job is named in the program's header and the run's line
+    /// (the job file's path as given; `job.toml` until [`WindJob::named`]).
+    /// The summary records the job file by its absolute path instead.
     pub title: String,
     /// The NC program's name (the job file's stem).
     pub program_name: String,
@@ -306,7 +307,7 @@ impl WindJob {
     }
 
     /// The job named after its file: `path` as given names it in the
-    /// program's header and the summary, its stem names the program.
+    /// program's header and the run's line, its stem names the program.
     pub fn named(mut self, path: &Path) -> Self {
         self.title = path.display().to_string();
         self.program_name = path

@@ -29,7 +29,7 @@ pub use job::{
 };
 pub use mandrel_check::{
     MandrelCheckBuilder, free_fibre, is_wind_file, laminate, laminate_of_job, mandrel_check,
-    mandrel_check_of_file, read_job, wound_circuit,
+    mandrel_check_of_file, read_job, read_job_from, wound_circuit,
 };
 pub use plan::{
     LayerBody, Stage, Wound, WoundLayer, WoundProgram, plan_each, plan_program, plan_until,

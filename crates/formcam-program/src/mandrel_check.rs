@@ -21,8 +21,18 @@ use crate::{
 /// [`EYE_CLEARANCE_MM`] when `None`), else a TOML job, its files relative
 /// to its folder.
 pub fn read_job(path: &Path, eye_clearance: Option<f64>) -> Result<WindJob, JobFileError> {
+    read_job_from(path, path.parent().unwrap_or(Path::new("")), eye_clearance)
+}
+
+/// [`read_job`] for a job file kept apart from its folder (the copy a
+/// result keeps of the job it ran): the files it names are relative to
+/// `base`, the job's own folder; errors name `path`.
+pub fn read_job_from(
+    path: &Path,
+    base: &Path,
+    eye_clearance: Option<f64>,
+) -> Result<WindJob, JobFileError> {
     let text = formcam_files::read_text(path)?;
-    let base = path.parent().unwrap_or(Path::new(""));
     if is_wind_file(path) {
         WindJob::from_wind(&text, eye_clearance.unwrap_or(EYE_CLEARANCE_MM), &[])
     } else {

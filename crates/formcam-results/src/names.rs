@@ -7,6 +7,15 @@ pub const SUMMARY: &str = "summary.json";
 pub const CHECK: &str = "check.json";
 /// A correction's or a closed loop's report: `report.json`.
 pub const REPORT: &str = "report.json";
+/// The job as it ran, a TOML job's text (winding, dressing, correction,
+/// closed loop): `job.toml`. The job file may change or move after the
+/// run; this copy stays with its result (the view plans a winding
+/// result's job again from it, the files the job names found from the
+/// job's folder the summary records).
+pub const JOB: &str = "job.toml";
+/// The job as it ran, a Cyclone/FiberPath document's text: `job.wind`
+/// (as [`JOB`] for a TOML job).
+pub const JOB_WIND: &str = "job.wind";
 /// A winding pass's plot: `path.svg`.
 pub const PATH_SVG: &str = "path.svg";
 /// The eye's plot over a circuit: `eye.svg`.

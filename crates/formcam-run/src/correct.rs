@@ -21,6 +21,7 @@ use formcam_results::names::{
 };
 use serde_json::{Value, json};
 
+use crate::files::recorded;
 use crate::{ResultFile, RunError, RunOutput};
 
 /// Why a correction or a closed loop failed: the file or the setting it
@@ -183,7 +184,8 @@ pub fn correct_with(
 /// Runs a `[correct]` job file (`path`, its `text`) into `out_dir`:
 /// `corrected.<ext>` (the program's extension), its plots, what happened
 /// to each node (`node-status.csv`), the next part's predicted CMM report
-/// (`predicted-cmm.csv`) and a fresh `report.json`.
+/// (`predicted-cmm.csv`), a fresh `report.json` and the job's text
+/// (`job.toml`).
 pub fn correct_job(path: &Path, text: &str, out_dir: &Path) -> Result<RunOutput, RunError> {
     correct_job_with(path, text, out_dir, &Silent)
 }
@@ -218,6 +220,7 @@ pub fn correct_job_with(
     run.files
         .push(ResultFile::new(PREDICTED.file, c.predicted.to_csv()));
     run.files.push(ResultFile::new(REPORT, report));
+    run.files.push(ResultFile::new(names::JOB, text));
     run.inputs.insert(0, path.to_path_buf());
     Ok(run)
 }
@@ -361,8 +364,10 @@ fn flag(field: JobField) -> &'static str {
     }
 }
 
-/// The report: the correction's [`formcam_correct::Report`], the paths,
-/// and the history of the runs (the previous report's, this run added).
+/// The report: the correction's [`formcam_correct::Report`], the paths
+/// (the measurements and the program it read absolute, the output as
+/// given), and the history of the runs (the previous report's, this run
+/// added).
 fn report_json(
     job: &CorrectionJob,
     output: &Path,
@@ -376,12 +381,13 @@ fn report_json(
         }) => previous_runs(path, text)?,
         _ => Vec::new(),
     };
-    let name = |p: &Path| p.display().to_string();
+    let (measurements, program) = (recorded(&job.measurements), recorded(&job.program));
+    let output = output.display().to_string();
     let r = &c.report;
     runs.push(json!({
-        "measurements": name(&job.measurements),
-        "program": name(&job.program),
-        "output": name(output),
+        "measurements": measurements,
+        "program": program,
+        "output": output,
         "max_deviation_mm": r.max_deviation_mm,
         "rms_deviation_mm": r.rms_deviation_mm,
         "max_displacement_mm": r.max_displacement_mm,
@@ -391,9 +397,9 @@ fn report_json(
     }));
     let mut report = serde_json::to_value(r).map_err(|e| CorrectRunError::Json(e.to_string()))?;
     if let Value::Object(m) = &mut report {
-        m.insert("measurements".into(), json!(name(&job.measurements)));
-        m.insert("program".into(), json!(name(&job.program)));
-        m.insert("output".into(), json!(name(output)));
+        m.insert("measurements".into(), json!(measurements));
+        m.insert("program".into(), json!(program));
+        m.insert("output".into(), json!(output));
         m.insert("history".into(), Value::Array(runs));
     }
     pretty(&report)
@@ -423,7 +429,8 @@ fn pretty(v: &Value) -> Result<Vec<u8>, CorrectRunError> {
 /// Runs a closed-loop scenario (`path`, its `text`; the files go to
 /// `out_dir`): `program-<k>.nc` and `cmm-<k>.csv` per round,
 /// `deviations-before.svg`, `deviations-after.svg`, `convergence.svg` and
-/// `report.json` (with the section-spacing study).
+/// `report.json` (with the section-spacing study; `scenario` the file's
+/// absolute path) and the scenario's text (`job.toml`).
 pub fn correct_simulate(path: &Path, text: &str, out_dir: &Path) -> Result<RunOutput, RunError> {
     correct_simulate_with(path, text, out_dir, &Silent)
 }
@@ -496,7 +503,7 @@ pub fn correct_simulate_with(
         })
         .collect();
     let report = json!({
-        "scenario": path.display().to_string(),
+        "scenario": recorded(path),
         "iterations": scenario.iterations,
         "interpolation": scenario.options.interpolation.name(),
         "sections": scenario.sections,
@@ -510,6 +517,7 @@ pub fn correct_simulate_with(
         "section_study": study,
     });
     files.push(ResultFile::new(REPORT, pretty(&report)?));
+    files.push(ResultFile::new(names::JOB, text));
     progress.checkpoint(Step::new(Phase::Files, 1, 1))?;
     Ok(RunOutput {
         files,

@@ -1,6 +1,7 @@
 //! A dressing job (`[wheel]`, `[dresser]`, `[process]`) to its files: the
 //! two programs, the CSVs of the profile, the dresser's path, the removal
-//! rate and the contours, the plots and `summary.json`.
+//! rate and the contours, the plots, `summary.json` (its `job` the job
+//! file's absolute path) and the job's text as it ran (`job.toml`).
 //!
 //! Every table names the wheel's axes as the programs do: `z` along the
 //! wheel's axis, `x` radial (mm, the ball's centre at the origin).
@@ -15,9 +16,10 @@ use formcam_progress::{Phase, Progress, Silent, Step};
 use formcam_results::dressing::{
     CONTOUR_FINAL, CONTOUR_INITIAL, CONTOUR_PASSES, DRESSER, MRR, PROFILE,
 };
-use formcam_results::names::{MRR_SVG, PROFILE_SVG, SUMMARY};
+use formcam_results::names::{JOB, MRR_SVG, PROFILE_SVG, SUMMARY};
 use serde_json::json;
 
+use crate::files::recorded;
 use crate::{ResultFile, RunError, RunOutput};
 
 /// Whether a job's top-level table is a dressing job (it has `[wheel]`).
@@ -84,7 +86,7 @@ pub fn dress_text_with(
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let mut summary = summary(&name, &d);
+    let mut summary = summary(&recorded(job), &d);
     if let Some(obj) = summary.as_object_mut() {
         obj.insert("warnings".into(), json!(warnings));
     }
@@ -102,6 +104,7 @@ pub fn dress_text_with(
         ResultFile::new(PROFILE_SVG, formcam_plot::profile_svg(&name, &d)?),
         ResultFile::new(MRR_SVG, formcam_plot::mrr_svg(&name, &d)?),
         ResultFile::new(SUMMARY, summary),
+        ResultFile::new(JOB, text),
     ];
     let ratio = |r: Option<f64>| r.map_or("-".to_string(), |r| format!("{r:.2}"));
     let line = format!(
@@ -257,7 +260,8 @@ fn mrr_csv(d: &Dressing) -> Vec<u8> {
     s.into_bytes()
 }
 
-fn summary(name: &str, d: &Dressing) -> serde_json::Value {
+/// The summary of `d`, the job file `job` as the result records it.
+fn summary(job: &str, d: &Dressing) -> serde_json::Value {
     let f = &d.feed;
     let fs = &d.feed_spec;
     let (removed, between) = (d.forming.removed(), d.forming.area_between());
@@ -298,7 +302,7 @@ fn summary(name: &str, d: &Dressing) -> serde_json::Value {
         })
         .collect();
     let mut v = json!({
-        "job": name,
+        "job": job,
         "points": d.points(),
         "dressing_time_s": d.dressing_time_s(),
         "mrr_ratio_uncontrolled": f.ratio_uncontrolled,

@@ -1,7 +1,7 @@
 //! The files a run produces, held in memory until the caller writes them,
 //! and the files it read (which no output may overwrite).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// One file of a run's result: its name inside the output folder and its
 /// contents.
@@ -50,4 +50,15 @@ impl RunOutput {
     pub fn file(&self, name: &str) -> Option<&ResultFile> {
         self.files.iter().find(|f| f.name == name)
     }
+}
+
+/// How a result records a file it read (the job, a correction's
+/// measurements and program): absolute, with `.`, `..` and symlinks
+/// resolved, so that it is found from any folder the result is opened in;
+/// as given where the current folder cannot be read.
+pub(crate) fn recorded(path: &Path) -> String {
+    formcam_files::resolve(path)
+        .unwrap_or_else(|_| path.to_path_buf())
+        .display()
+        .to_string()
 }

@@ -6,6 +6,11 @@
 //! with the one line a caller prints. The command line, the local server and
 //! bindings call these functions and only decide where the files go.
 //!
+//! A result records the files it read by their absolute paths (its
+//! summary's `job`, a correction report's `measurements` and `program`),
+//! and keeps the job's text as it ran ([`formcam_results::names::JOB`]),
+//! so that it opens from any folder, even once the job file has changed.
+//!
 //! Each run has a `_with` form taking a progress and cancel hook
 //! ([`progress::Progress`]); a cancelled run is [`RunError::Cancelled`] and
 //! returns no files.

@@ -4,7 +4,7 @@
 
 mod common;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use common::{examples, job, json, plate, plate_program, scratch, text};
 use formcam_correct::{Interpolation, Options, Settings, Tool};
@@ -169,9 +169,13 @@ fn the_bundled_job_gives_its_program_plots_and_a_fresh_report() {
             "corrected.displacement.svg",
             "node-status.csv",
             "predicted-cmm.csv",
-            "report.json"
+            "report.json",
+            "job.toml"
         ]
     );
+    // The job as it ran; the files it read by their absolute paths (the
+    // job names them relative to its folder, here through `..`).
+    assert_eq!(common::text(&run, "job.toml"), text);
     // formcam-correct writes these two: their headers are the descriptions'.
     let header = |name: &str| {
         let bytes = &run.file(name).unwrap().bytes;
@@ -226,6 +230,19 @@ fn the_bundled_job_gives_its_program_plots_and_a_fresh_report() {
     assert_eq!(r["nodes_rapid_unchanged"], 2);
     assert!(r["smoothing"]["noise_mm"].as_f64().unwrap() > 0.0);
     assert_eq!(r["history"].as_array().unwrap().len(), 1);
+    for (key, file) in [("measurements", "cmm.csv"), ("program", "mould.nc")] {
+        let named = examples()
+            .join("correct")
+            .join(file)
+            .canonicalize()
+            .unwrap();
+        assert_eq!(
+            r[key].as_str().map(PathBuf::from),
+            Some(named.clone()),
+            "{key}"
+        );
+        assert_eq!(r["history"][0][key], r[key], "{key}");
+    }
 }
 
 /// The texts of an SVG document with their `text-anchor`.

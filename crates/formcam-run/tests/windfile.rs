@@ -225,3 +225,29 @@ fn accepted_slack_is_reported_in_the_summary_and_the_header() {
         "{header:?}"
     );
 }
+
+#[test]
+fn the_result_keeps_the_document_and_names_it_by_its_absolute_path() {
+    let dir = scratch("kept");
+    std::fs::create_dir_all(dir.join("sub")).unwrap();
+    let text = serde_json::to_string_pretty(&base()).unwrap();
+    std::fs::write(dir.join("job.wind"), &text).unwrap();
+    // Given through `..`: the summary names the file resolved.
+    let run = wind_file(
+        &dir.join("sub/../job.wind"),
+        Path::new("out"),
+        EYE_CLEARANCE_MM,
+        &[],
+    )
+    .unwrap();
+    let named = dir.join("job.wind").canonicalize().unwrap();
+    assert_eq!(
+        summary(&run)["job"].as_str().map(Path::new),
+        Some(named.as_path())
+    );
+    assert_eq!(
+        run.file("job.wind").map(|f| f.bytes.clone()),
+        Some(text.into_bytes())
+    );
+    assert!(run.file("job.toml").is_none());
+}

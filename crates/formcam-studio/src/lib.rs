@@ -19,9 +19,7 @@ pub use check::{Applied, FieldError, apply_job, check_job};
 pub use error::{NameProblem, StudioError, ValuesProblem};
 pub use examples::{Example, example, examples, start_example};
 pub use formcam_run::JobKind;
-pub use runs::{
-    RUN_FILE, RUN_JOB_FILE, RUNS_FOLDER, RunEntry, RunOrder, RunState, RunStatus, Runs,
-};
+pub use runs::{RUN_FILE, RUNS_FOLDER, RunEntry, RunOrder, RunState, RunStatus, Runs};
 pub use save::{backup_path, job_path, save_job, save_job_with};
 pub use server::StudioServer;
 pub use studio::{Answer, MAX_BODY_BYTES, Studio, StudioMethod};

@@ -18,13 +18,11 @@ use formcam_progress::{Hook, Step};
 use formcam_run::{RunError, RunOutput, run_job_text_with};
 use serde::Serialize;
 
+use crate::studio::UNSAVED;
 use crate::{JobKind, StudioError};
 
 /// The folder of `DIR` the runs are written into.
 pub const RUNS_FOLDER: &str = "runs";
-
-/// The job's text as a run folder keeps it.
-pub const RUN_JOB_FILE: &str = "job.toml";
 
 /// What a run folder says of its run: the job file, its kind, the line.
 pub const RUN_FILE: &str = "run.json";
@@ -367,9 +365,7 @@ fn run_one(shared: &Shared, q: &Queued) -> Result<String, Ended> {
     let out = shared.dir.join(RUNS_FOLDER).join(&q.name);
     // The job stands where its file is (or would be): the files it names
     // are found beside it, and the summary names it by its full path.
-    let job = shared
-        .dir
-        .join(q.order.file.as_deref().unwrap_or(RUN_JOB_FILE));
+    let job = shared.dir.join(q.order.file.as_deref().unwrap_or(UNSAVED));
     let hook = Hook::with_flag(Arc::clone(&q.flag), |step: Step| {
         shared.update(&q.name, |l| {
             l.status.phase = Some(step.phase.name());
@@ -388,7 +384,8 @@ fn run_one(shared: &Shared, q: &Queued) -> Result<String, Ended> {
     write_run(&out, q, output)
 }
 
-/// The run folder: the result's files, the job's text, `run.json`.
+/// The run folder: the result's files (the job's text as it ran among
+/// them, as every result keeps it: `job.toml`), `run.json`.
 fn write_run(out: &Path, q: &Queued, output: RunOutput) -> Result<String, Ended> {
     let record = RunRecord {
         job: q.order.file.clone(),
@@ -400,10 +397,9 @@ fn write_run(out: &Path, q: &Queued, output: RunOutput) -> Result<String, Ended>
     let mut files: Vec<(String, Vec<u8>)> = output
         .files
         .into_iter()
-        .filter(|f| f.name != RUN_JOB_FILE && f.name != RUN_FILE)
+        .filter(|f| f.name != RUN_FILE)
         .map(|f| (f.name, f.bytes))
         .collect();
-    files.push((RUN_JOB_FILE.into(), q.order.text.clone().into_bytes()));
     files.push((RUN_FILE.into(), record));
     formcam_files::write_folder(out, &files, &output.inputs)
         .map_err(|e| Ended::Failed(e.to_string()))?;

@@ -22,8 +22,8 @@ use crate::{
 /// The most bytes of a request's body (the JSON the page posts).
 pub const MAX_BODY_BYTES: usize = 1024 * 1024;
 
-/// The file name an unsaved job is checked and run under.
-const UNSAVED: &str = "job.toml";
+/// The file name an unsaved job is checked and run under (in `DIR`).
+pub(crate) const UNSAVED: &str = "job.toml";
 
 /// A request's method, as the studio serves them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -231,8 +231,9 @@ fn read_measurements(report: &Path, path: &Path) -> Result<Measurements, ViewErr
 
 impl CorrectionBody {
     /// Reads the correction result in `root`: `report.json` (already read
-    /// as `report`) and the measurements it names (a relative name is
-    /// taken from the folder `formcam view` runs in, as it was for
+    /// as `report`) and the measurements it names (absolute, as formcam
+    /// records them; a relative name, in a report written before it did,
+    /// is taken from the folder `formcam view` runs in, as it was for
     /// `formcam correct`; CSV, or DMIS by the extension) — or, for a
     /// closed loop's report (its `rounds`, no `measurements`), each
     /// round's `cmm-<k>.csv` in `root`.

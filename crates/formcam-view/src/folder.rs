@@ -134,9 +134,30 @@ impl RunFolder {
         self.machine_file.as_deref().and_then(Path::parent)
     }
 
+    /// The job the summary names (`job`: its absolute path; a relative
+    /// one, in a result written before formcam recorded it so, is taken
+    /// from the folder the view runs in).
+    pub fn job(&self) -> Option<PathBuf> {
+        self.summary
+            .get("job")
+            .and_then(Value::as_str)
+            .map(PathBuf::from)
+    }
+
+    /// The copy of the job as it ran the result keeps (`job.toml`, or
+    /// `job.wind` for a `.wind` document), if it has one (a result written
+    /// before formcam kept it has none).
+    pub fn job_copy(&self) -> Option<PathBuf> {
+        [names::JOB, names::JOB_WIND]
+            .into_iter()
+            .map(|name| self.root.join(name))
+            .find(|p| p.is_file())
+    }
+
     /// Reads the result folder `root`: `summary.json`, the machine (from
     /// `machine`, else the shipped machine or the machine file the summary
-    /// names, relative to its job), `program_file` and the path table.
+    /// names, relative to its job's folder), `program_file` and the path
+    /// table.
     ///
     /// # Errors
     ///
@@ -207,7 +228,10 @@ pub fn load_machine(path: &Path) -> Result<Machine, ViewError> {
 }
 
 /// The machine the summary names: `machine_shipped`, or `machine_file`
-/// relative to the folder of `job` (as the run was given it), and that file.
+/// relative to the folder of `job` (the job file's absolute path, found
+/// from any folder; a relative one, in a result written before formcam
+/// recorded it so, is taken from the folder the view runs in), and that
+/// file.
 pub(crate) fn summary_machine(
     path: &Path,
     summary: &Map<String, Value>,

@@ -161,7 +161,9 @@ fn guard_output(root: &Path, out: &Path) -> Result<(), ViewError> {
 }
 
 /// The files the result's summary or report names (the job, its machine
-/// file, the measurements), as the run was given them.
+/// file, the measurements, the program): absolute, as formcam records
+/// them; a relative name (a result written before it did) as the run was
+/// given it.
 fn inputs(root: &Path, kind: ResultKind) -> Vec<PathBuf> {
     let name = if kind == ResultKind::Correction {
         names::REPORT

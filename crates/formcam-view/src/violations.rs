@@ -3,13 +3,14 @@
 //! formcam-sim's whole check run when the view opens
 //! ([`formcam_sim::check_text_with`], as `formcam wind` and `formcam check`
 //! run it): the axes, the collisions of the machine's solids and the bed,
-//! and, when the job that made the result is found (`summary.json`'s `job`),
-//! the mandrel grown by its laminate and the free fibre. `checks` names the
-//! checks the view ran and `unchecked` why one was left out. Each violation
-//! is passed on as the report writes it (a kind the view does not know is
-//! still listed), with the time spans of its first and worst block.
+//! and, when the job that made the result is found (the copy the folder
+//! keeps, `job.toml`, else `summary.json`'s `job`), the mandrel grown by its
+//! laminate and the free fibre. `checks` names the checks the view ran and
+//! `unchecked` why one was left out. Each violation is passed on as the
+//! report writes it (a kind the view does not know is still listed), with
+//! the time spans of its first and worst block.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use formcam_results::names;
 use formcam_sim::{AxisLimits, MandrelCheck, check_text_with, check_timeline};
@@ -185,30 +186,39 @@ impl Ran {
     }
 }
 
-/// The mandrel check of the job `summary.json` names (`job`, as the run
-/// was given it; a `.wind` document with the eye clearance the summary
-/// gives), planned now; why not, in words.
+/// The mandrel check of the job that made the result (a `.wind` document
+/// with the eye clearance the summary gives), planned now: the job's text
+/// as it ran, the copy the folder keeps, with the files it names found
+/// from the folder of the job `summary.json` names (`job`); without a copy
+/// (a result written before formcam kept one), the job file itself. Why
+/// not, in words.
 fn job_check(folder: &RunFolder, program: &ProgramFile) -> Result<MandrelCheck, String> {
-    let job = folder
-        .summary
-        .get("job")
-        .and_then(Value::as_str)
-        .map(PathBuf::from)
-        .ok_or("summary.json names no job")?;
-    if !job.is_file() {
-        return Err(format!(
-            "the job that made {} ({}) is not found",
-            program.path.display(),
-            job.display()
-        ));
-    }
+    let job = folder.job().ok_or("summary.json names no job")?;
     let clearance = folder
         .summary
         .get("eye_clearance_mm")
         .and_then(Value::as_f64);
-    let wind = formcam_program::read_job(&job, clearance).map_err(|e| e.to_string())?;
+    let (read, wind) = match folder.job_copy() {
+        Some(copy) => {
+            let base = job.parent().unwrap_or(Path::new(""));
+            let wind = formcam_program::read_job_from(&copy, base, clearance)
+                .map_err(|e| e.to_string())?;
+            (copy, wind)
+        }
+        None if job.is_file() => {
+            let wind = formcam_program::read_job(&job, clearance).map_err(|e| e.to_string())?;
+            (job, wind)
+        }
+        None => {
+            return Err(format!(
+                "the job that made {} ({}) is not found",
+                program.path.display(),
+                job.display()
+            ));
+        }
+    };
     formcam_program::mandrel_check(&wind)
-        .map_err(|e| formcam_program::JobFileError::job(&job, e).to_string())
+        .map_err(|e| formcam_program::JobFileError::job(&read, e).to_string())
 }
 
 /// The `violations` of a report `formcam check` wrote.

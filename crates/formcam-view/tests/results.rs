@@ -365,10 +365,14 @@ fn the_correction_map_holds_every_measured_point() {
         .fold(0.0f64, |m, d| m.max(d.abs()));
     let reported = c["report"]["max_deviation_mm"].as_f64().unwrap();
     assert!((worst - reported).abs() < 1e-9, "{worst} vs {reported}");
-    // The report names the file as the job joined it (through
-    // `crates/formcam-view/../..` here); the title shows it plain.
+    // The job joined the file to its folder (through
+    // `crates/formcam-view/../..` here); the report names it by its
+    // absolute path, `..` resolved, found from any folder; the title shows
+    // it plain.
     let named = c["report"]["measurements"].as_str().unwrap();
-    assert!(named.contains("/../"), "{named}");
+    assert!(Path::new(named).is_absolute(), "{named}");
+    assert!(!named.contains("/../"), "{named}");
+    assert_eq!(Path::new(named), cmm.canonicalize().unwrap());
     let shown = c["measurements"].as_str().unwrap();
     assert!(
         Path::new(shown).components().all(|p| matches!(

@@ -2,6 +2,8 @@
 //! ([`LayerFiles`], made as the layers are planned), the program's axes over
 //! time in `axes.csv`.
 
+use std::path::Path;
+
 use formcam_machine::Machine;
 use formcam_program::{Assembled, WindJob, WoundLayer, WoundProgram};
 use formcam_results::names::{self, EYE_SVG, PATH_SVG, SUMMARY};
@@ -12,6 +14,7 @@ use super::csv::{axes_csv, band_csv, eye_csv, path_csv, program_axes};
 use super::line::layered_line;
 use super::program::program_files;
 use super::summary::{layered_summary, pretty};
+use crate::files::recorded;
 use crate::{ResultFile, RunError, RunOutput};
 
 /// A multi-layer job's per-layer files (`layer-NN/`), made as each layer is
@@ -72,9 +75,11 @@ impl LayerFiles {
     }
 }
 
-/// A multi-layer job: each layer's outputs in `layer-NN/` (made as the
-/// layers were planned), the program's axes over time in `axes.csv`.
+/// A multi-layer job (the file at `path`): each layer's outputs in
+/// `layer-NN/` (made as the layers were planned), the program's axes over
+/// time in `axes.csv`.
 pub(super) fn layered(
+    path: &Path,
     job: &WindJob,
     wound: &WoundProgram,
     program: Option<(&Assembled, Vec<u8>)>,
@@ -85,7 +90,15 @@ pub(super) fn layered(
     };
     let mut files = each.files;
     let fibre = wound.fibre_length_mm();
-    let mut summary = layered_summary(job, m, &jm.source, wound, &each.axes, fibre);
+    let mut summary = layered_summary(
+        &recorded(path),
+        job,
+        m,
+        &jm.source,
+        wound,
+        &each.axes,
+        fibre,
+    );
     let (pf, fields, program_line) = program_files(m, p, wound, text);
     summary.extend(fields);
     files.extend(pf);

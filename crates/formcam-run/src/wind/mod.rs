@@ -4,6 +4,10 @@
 //! done. A single-layer job writes its layer's outputs as its own; a
 //! multi-layer job (and a `.wind` document) writes them per layer.
 //!
+//! The summary's `job` is the job file's absolute path (the files the job
+//! names are found from its folder), and the result keeps the job's text
+//! as it ran: `job.toml` (`job.wind` for a `.wind` document).
+//!
 //! A run that writes a program then checks it on its machine as `formcam
 //! check --mandrel JOB` would, from the written text (the program read
 //! back, each block timed by its own feed), with the job's mandrel, laminate
@@ -76,9 +80,11 @@ pub fn wind_checked_with(
     progress: &dyn Progress,
 ) -> Result<RunOutput, RunError> {
     let t0 = Instant::now();
-    let wj = read_job(job)?;
+    let text = read_job_text(job)?;
+    let wj = parse_job(job, &text)?;
     let mut output = run(job, out, &wj, stage, check, t0, progress)?;
     output.inputs = job_inputs(job, &wj);
+    output.files.push(ResultFile::new(names::JOB, text));
     Ok(output)
 }
 
@@ -102,7 +108,8 @@ pub fn wind_furthest_with(
 /// [`wind_furthest_with`] for the job `text` the caller holds (an edited
 /// job not yet saved): read as if it were the file at `job`, so the files
 /// it names are found relative to `job`'s folder and the summary names
-/// `job`; the file itself is not read.
+/// `job` (its absolute path); the file itself is not read, and `text` is
+/// the copy the result keeps.
 pub fn wind_furthest_text_with(
     job: &Path,
     text: &str,
@@ -124,6 +131,7 @@ fn furthest(
     let stage = wj.furthest_stage();
     let mut output = run(job, out, &wj, stage, ProgramCheck::On, t0, progress)?;
     output.inputs = job_inputs(job, &wj);
+    output.files.push(ResultFile::new(names::JOB, text));
     Ok(output)
 }
 
@@ -147,11 +155,6 @@ fn job_inputs(path: &Path, job: &WindJob) -> Vec<PathBuf> {
     std::iter::once(path.to_path_buf())
         .chain(named.into_iter().flatten().map(|f| job.base_dir.join(f)))
         .collect()
-}
-
-/// The job at `path`, read.
-fn read_job(path: &Path) -> Result<WindJob, RunError> {
-    parse_job(path, &read_job_text(path)?)
 }
 
 /// The text of the job file at `path`.
@@ -191,7 +194,7 @@ fn run(
     };
     progress.checkpoint(Step::new(Phase::Files, 0, 1))?;
     let mut output = if job.is_layered() {
-        layered(job, &wound, program, each)?
+        layered(path, job, &wound, program, each)?
     } else {
         single(path, job, &wound, program)?
     };

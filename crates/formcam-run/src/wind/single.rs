@@ -11,6 +11,7 @@ use super::csv::{axes_csv, band_csv, eye_csv, path_csv};
 use super::line::{axes_line, eye_line, single_line};
 use super::program::program_files;
 use super::summary::{add_axes_summary, add_eye_summary, layer_summary, pretty};
+use crate::files::recorded;
 use crate::{ResultFile, RunError, RunOutput};
 
 /// A single-layer job: the layer's outputs are the job's.
@@ -28,7 +29,7 @@ pub(super) fn single(
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     let layer = &l.layer;
-    let mut summary = layer_summary(&job.title, l.mandrel.kind(), layer);
+    let mut summary = layer_summary(&recorded(path), l.mandrel.kind(), layer);
     if let Some(w) = summary.get_mut("warnings").and_then(Value::as_array_mut) {
         w.extend(wound.warnings.iter().map(|s| json!(s)));
     }

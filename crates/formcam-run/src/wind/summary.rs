@@ -31,6 +31,7 @@ pub(super) fn json_name<T: serde::Serialize>(v: &T) -> String {
         .unwrap_or_default()
 }
 
+/// A layer's summary; `job` the job file as the result records it.
 pub(super) fn layer_summary(job: &str, kind: &str, layer: &Layer) -> Value {
     let mu = layer.pass.mu.unwrap_or(layer.pass.mu_max_abs);
     json!({
@@ -164,10 +165,12 @@ pub(super) fn program_summary(p: &Assembled, ext: &str, axis_ranges: Value) -> M
     summary
 }
 
-/// A multi-layer job's summary: the job, its machine, the fibre, each
-/// layer's figures (`axes`: each layer's limits kept and largest IK
-/// residual) and, for a `.wind` document, its eye.
+/// A multi-layer job's summary: the job (`path`, the file as the result
+/// records it), its machine, the fibre, each layer's figures (`axes`: each
+/// layer's limits kept and largest IK residual) and, for a `.wind`
+/// document, its eye.
 pub(super) fn layered_summary(
+    path: &str,
     job: &WindJob,
     m: &Machine,
     source: &MachineSource,
@@ -177,7 +180,7 @@ pub(super) fn layered_summary(
 ) -> Map<String, Value> {
     let per_layer = per_layer(wound, axes);
     let mut summary = Map::new();
-    summary.insert("job".into(), json!(job.title));
+    summary.insert("job".into(), json!(path));
     summary.insert("machine".into(), json!(m.name));
     insert_source(&mut summary, source);
     summary.insert(

@@ -7,9 +7,10 @@ use std::time::Instant;
 
 use formcam_program::{Check, Stage, WindJob};
 use formcam_progress::{Progress, Silent};
+use formcam_results::names;
 
 use super::{ProgramCheck, read_job_text, run};
-use crate::{RunError, RunOutput};
+use crate::{ResultFile, RunError, RunOutput};
 
 /// `formcam wind JOB.wind -o OUT`: a Cyclone/FiberPath `.wind` job on the
 /// shipped X/A/B winder with its eye `eye_clearance` mm over the mandrel,
@@ -50,6 +51,7 @@ pub fn wind_file_checked_with(
         .named(path);
     let mut output = run(path, out, &wj, Stage::Program, check, t0, progress)?;
     output.inputs = vec![path.to_path_buf()];
+    output.files.push(ResultFile::new(names::JOB_WIND, text));
     if let Some(w) = &wj.wind_file {
         // Before the check's verdict, which ends the line.
         let at = output.line.find("; checked").unwrap_or(output.line.len());

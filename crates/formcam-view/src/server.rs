@@ -54,23 +54,44 @@ pub struct ViewOptions {
 pub struct View {
     root: PathBuf,
     summary: Vec<u8>,
+    page: Page,
+    content: Content,
+}
+
+/// What a result holds for the page, by its kind.
+#[derive(Debug)]
+enum Content {
+    /// A winding result with its program: the machine playing it.
+    Winding(Box<Played>),
+    /// A winding result without a program: the path, band and eye
+    /// (`/api/path`) in the same scene.
+    Path(Scene, Vec<u8>),
+    /// A dressing result (`/api/dressing`).
+    Dressing(Box<DressingView>, Vec<u8>),
+    /// A correction result (`/api/correction`).
+    Correction(Vec<u8>),
+}
+
+/// What the 3-D views of a winding result share.
+#[derive(Debug)]
+struct Scene {
+    /// `/api/machine`.
     machine: Vec<u8>,
     /// The machine's meshes drawn (`/api/mesh/N`), binary.
     meshes: Vec<Vec<u8>>,
+    /// `/api/mandrel`, when the result has a path table.
     mandrel: Option<Vec<u8>>,
+    /// The winding plots (`/api/plots`).
+    plots: Vec<u8>,
+}
+
+/// A winding program played on its machine.
+#[derive(Debug)]
+struct Played {
+    scene: Scene,
     program: Option<String>,
     timeline: Option<Timeline>,
     overlay: Option<Overlay>,
-    page: Page,
-    kind: ResultKind,
-    /// A winding result's plots (`/api/plots`).
-    plots: Option<Vec<u8>>,
-    /// A dressing result (`/api/dressing`).
-    dressing: Option<(DressingView, Vec<u8>)>,
-    /// A correction result (`/api/correction`).
-    correction: Option<Vec<u8>>,
-    /// A winding result without a program (`/api/path`).
-    path: Option<Vec<u8>>,
 }
 
 impl View {
@@ -81,16 +102,40 @@ impl View {
     /// [`ViewError`] naming the file and the field.
     pub fn open(root: &Path, machine: Option<&Path>, page: Page) -> Result<Self, ViewError> {
         let kind = ResultKind::of(root)?;
-        if kind == ResultKind::Path {
-            return Self::open_path(root, machine, page);
-        }
-        if kind != ResultKind::Winding {
-            return Self::open_2d(root, kind, page);
-        }
-        let folder = RunFolder::open(root, machine)?;
         let real = root.canonicalize().map_err(|_| ViewError::NoFolder {
             path: root.to_path_buf(),
         })?;
+        let (summary, content) = match kind {
+            ResultKind::Winding => Self::played(root, &real, machine)?,
+            ResultKind::Path => Self::path(root, machine)?,
+            ResultKind::Dressing => {
+                let s = read_summary(&root.join(names::SUMMARY))?;
+                let d = DressingView::read(root, &s)?;
+                let body = json(d.body());
+                (json(&s), Content::Dressing(Box::new(d), body))
+            }
+            ResultKind::Correction => {
+                let r = read_summary(&root.join(names::REPORT))?;
+                let c = CorrectionBody::read(root, r.clone())?;
+                (json(&r), Content::Correction(json(&c)))
+            }
+        };
+        Ok(Self {
+            root: real,
+            summary,
+            page,
+            content,
+        })
+    }
+
+    /// A winding result with its program: the machine, the mandrel, the
+    /// program's timeline, its overlays and the plots.
+    fn played(
+        root: &Path,
+        real: &Path,
+        machine: Option<&Path>,
+    ) -> Result<(Vec<u8>, Content), ViewError> {
+        let folder = RunFolder::open(root, machine)?;
         let (scene, meshes) = MachineScene::read(&folder.machine, folder.machine_dir());
         let mandrel = match &folder.path_table {
             Some((path, text)) => Some(json(&MandrelScene::from_path_table(
@@ -111,72 +156,31 @@ impl View {
         };
         let overlay = match &timeline {
             // The folder's `check.json` holds for the machine it names only.
-            Some(tl) => Some(Overlay::open(&real, &folder, tl, machine.is_none())?),
+            Some(tl) => Some(Overlay::open(real, &folder, tl, machine.is_none())?),
             None => None,
         };
         let plots = json(&WindingPlots::read(
             root,
             timeline.as_ref().map(Timeline::sim),
         )?);
-        Ok(Self {
-            kind,
-            plots: Some(plots),
-            dressing: None,
-            correction: None,
-            path: None,
-            root: real,
-            summary: json(&folder.summary),
-            machine: json(&scene),
-            meshes: meshes.iter().map(DrawnMesh::to_bytes).collect(),
-            mandrel,
+        let played = Played {
+            scene: Scene {
+                machine: json(&scene),
+                meshes: meshes.iter().map(DrawnMesh::to_bytes).collect(),
+                mandrel,
+                plots,
+            },
             program: folder.program.map(|p| p.text),
             timeline,
             overlay,
-            page,
-        })
-    }
-
-    /// A dressing or correction result: its summary or report, the view of
-    /// its kind.
-    fn open_2d(root: &Path, kind: ResultKind, page: Page) -> Result<Self, ViewError> {
-        let real = root.canonicalize().map_err(|_| ViewError::NoFolder {
-            path: root.to_path_buf(),
-        })?;
-        let (summary, dressing, correction) = if kind == ResultKind::Dressing {
-            let s = read_summary(&root.join(names::SUMMARY))?;
-            let d = DressingView::read(root, &s)?;
-            let body = json(d.body());
-            (json(&s), Some((d, body)), None)
-        } else {
-            let r = read_summary(&root.join(names::REPORT))?;
-            let c = CorrectionBody::read(root, r.clone())?;
-            (json(&r), None, Some(json(&c)))
         };
-        Ok(Self {
-            root: real,
-            summary,
-            machine: Vec::new(),
-            meshes: Vec::new(),
-            mandrel: None,
-            program: None,
-            timeline: None,
-            overlay: None,
-            page,
-            kind,
-            plots: None,
-            dressing,
-            correction,
-            path: None,
-        })
+        Ok((json(&folder.summary), Content::Winding(Box::new(played))))
     }
 
     /// A winding result without a program: the mandrel with its path (the
     /// folder's path table), the band and eye of `/api/path`, the machine
     /// the result names (if any) and the winding plots, no timeline.
-    fn open_path(root: &Path, machine: Option<&Path>, page: Page) -> Result<Self, ViewError> {
-        let real = root.canonicalize().map_err(|_| ViewError::NoFolder {
-            path: root.to_path_buf(),
-        })?;
+    fn path(root: &Path, machine: Option<&Path>) -> Result<(Vec<u8>, Content), ViewError> {
         let summary = read_summary(&root.join(names::SUMMARY))?;
         // Without a path table: the error of reading `path.csv`.
         let table = match read_path_table(root)? {
@@ -189,46 +193,60 @@ impl View {
         };
         let view = PathView::read(root, &summary, machine, (&table.0, &table.1))?;
         let mandrel = MandrelScene::from_path_table(view.scene.mandrel, &table.1, &table.0)?;
-        Ok(Self {
-            root: real,
-            summary: json(&summary),
+        let scene = Scene {
             machine: json(&view.scene),
             meshes: view.meshes.iter().map(DrawnMesh::to_bytes).collect(),
             mandrel: Some(json(&mandrel)),
-            program: None,
-            timeline: None,
-            overlay: None,
-            page,
-            kind: ResultKind::Path,
-            plots: Some(json(&WindingPlots::read(root, None)?)),
-            dressing: None,
-            correction: None,
-            path: Some(json(&view.body)),
-        })
+            plots: json(&WindingPlots::read(root, None)?),
+        };
+        Ok((json(&summary), Content::Path(scene, json(&view.body))))
     }
 
     /// What the folder holds.
     pub fn kind(&self) -> ResultKind {
-        self.kind
+        match &self.content {
+            Content::Winding(_) => ResultKind::Winding,
+            Content::Path(..) => ResultKind::Path,
+            Content::Dressing(..) => ResultKind::Dressing,
+            Content::Correction(_) => ResultKind::Correction,
+        }
+    }
+
+    /// The program played, for a winding result with one.
+    fn played_program(&self) -> Option<&Played> {
+        match &self.content {
+            Content::Winding(p) => Some(p),
+            _ => None,
+        }
+    }
+
+    /// The 3-D scene of a winding result, with or without its program.
+    fn scene(&self) -> Option<&Scene> {
+        match &self.content {
+            Content::Winding(p) => Some(&p.scene),
+            Content::Path(scene, _) => Some(scene),
+            _ => None,
+        }
     }
 
     /// The timeline of the result's program, if it has one.
     pub fn timeline(&self) -> Option<&Timeline> {
-        self.timeline.as_ref()
+        self.played_program()?.timeline.as_ref()
+    }
+
+    /// The overlays of the result's program, if it has one.
+    fn overlay(&self) -> Option<&Overlay> {
+        self.played_program()?.overlay.as_ref()
     }
 
     /// How many meshes `/api/mesh/N` serves (N from 0).
     pub(crate) fn mesh_count(&self) -> usize {
-        self.meshes.len()
+        self.scene().map_or(0, |s| s.meshes.len())
     }
 
     /// The band's laying table (see [`crate::Band::laid`]), with a band.
     pub(crate) fn band_laid(&self) -> Option<crate::report::LaidTable> {
-        self.overlay
-            .as_ref()?
-            .band
-            .as_ref()
-            .map(crate::Band::laid_table)
+        self.overlay()?.band.as_ref().map(crate::Band::laid_table)
     }
 
     /// The answer to a GET of `url`: status, content type, body.
@@ -244,68 +262,61 @@ impl View {
         let seg: Vec<&str> = target.segments.iter().map(String::as_str).collect();
         match seg.as_slice() {
             ["api", "result"] => Ok((JSON, self.summary.clone())),
-            ["api", "kind"] => Ok((JSON, json(&KindBody { kind: self.kind }))),
-            [
-                "api",
-                "machine" | "mandrel" | "program" | "timeline" | "sample" | "blocks",
-            ] if matches!(self.kind, ResultKind::Dressing | ResultKind::Correction) => {
-                Err(Refusal::NotFound)
-            }
-            ["api", "path"] => self
-                .path
-                .clone()
-                .map(|b| (JSON, b))
-                .ok_or(Refusal::NotFound),
+            ["api", "kind"] => Ok((JSON, json(&KindBody { kind: self.kind() }))),
+            ["api", "path"] => match &self.content {
+                Content::Path(_, body) => Ok((JSON, body.clone())),
+                _ => Err(Refusal::NotFound),
+            },
             // Which of `violations`, `eye` and `band` the result has: the
             // page asks only for those.
             ["api", "overlays"] => Ok((
                 JSON,
                 json(&OverlaysBody {
-                    band: self.overlay.as_ref().is_some_and(|o| o.band.is_some()),
-                    eye: self.overlay.is_some(),
-                    violations: self.overlay.is_some(),
+                    band: self.overlay().is_some_and(|o| o.band.is_some()),
+                    eye: self.overlay().is_some(),
+                    violations: self.overlay().is_some(),
                 }),
             )),
             ["api", "plots"] => self
-                .plots
-                .clone()
-                .map(|b| (JSON, b))
+                .scene()
+                .map(|s| (JSON, s.plots.clone()))
                 .ok_or(Refusal::NotFound),
-            ["api", "dressing"] => self
-                .dressing
-                .as_ref()
-                .map(|(_, b)| (JSON, b.clone()))
+            ["api", "dressing"] => match &self.content {
+                Content::Dressing(_, body) => Ok((JSON, body.clone())),
+                _ => Err(Refusal::NotFound),
+            },
+            ["api", "dressing", "sample"] => match &self.content {
+                Content::Dressing(d, _) => Ok((JSON, json(&d.sample(time_param(&target)?)))),
+                _ => Err(Refusal::NotFound),
+            },
+            ["api", "correction"] => match &self.content {
+                Content::Correction(body) => Ok((JSON, body.clone())),
+                _ => Err(Refusal::NotFound),
+            },
+            ["api", "machine"] => self
+                .scene()
+                .map(|s| (JSON, s.machine.clone()))
                 .ok_or(Refusal::NotFound),
-            ["api", "dressing", "sample"] => {
-                let (d, _) = self.dressing.as_ref().ok_or(Refusal::NotFound)?;
-                Ok((JSON, json(&d.sample(time_param(&target)?))))
-            }
-            ["api", "correction"] => self
-                .correction
-                .clone()
-                .map(|b| (JSON, b))
-                .ok_or(Refusal::NotFound),
-            ["api", "machine"] => Ok((JSON, self.machine.clone())),
             // The meshes the machine names, by their index in `/api/machine`.
             ["api", "mesh", n] => n
                 .parse::<usize>()
                 .ok()
-                .and_then(|n| self.meshes.get(n))
+                .and_then(|n| self.scene()?.meshes.get(n))
                 .map(|b| (BINARY, b.clone()))
                 .ok_or(Refusal::NotFound),
             ["api", "mandrel"] => self
-                .mandrel
-                .clone()
+                .scene()
+                .and_then(|s| s.mandrel.clone())
                 .map(|b| (JSON, b))
                 .ok_or(Refusal::NotFound),
             ["api", "program"] => self
-                .program
-                .clone()
+                .played_program()
+                .and_then(|p| p.program.clone())
                 .map(|t| (TEXT, t.into_bytes()))
                 .ok_or(Refusal::NotFound),
             ["api", "timeline"] => self.timeline_answer(&target),
             ["api", "sample"] => {
-                let tl = self.timeline.as_ref().ok_or(Refusal::NotFound)?;
+                let tl = self.timeline().ok_or(Refusal::NotFound)?;
                 Ok((JSON, json(&self.shown(tl.sample(time_param(&target)?)))))
             }
             ["api", "blocks"] => self.blocks_answer(),
@@ -328,7 +339,7 @@ impl View {
     /// `/api/timeline?samples=N`: the timeline's head and `N` samples
     /// (clamped to 2..=`MAX_SAMPLES`, `DEFAULT_SAMPLES` when not given).
     fn timeline_answer(&self, target: &Target) -> Result<(&'static str, Vec<u8>), Refusal> {
-        let tl = self.timeline.as_ref().ok_or(Refusal::NotFound)?;
+        let tl = self.timeline().ok_or(Refusal::NotFound)?;
         let n = match target.param("samples") {
             None => DEFAULT_SAMPLES,
             Some(s) => s.parse::<usize>().map_err(|_| Refusal::Path)?,
@@ -345,7 +356,7 @@ impl View {
 
     /// `/api/blocks`: each block's start and end time and its line.
     fn blocks_answer(&self) -> Result<(&'static str, Vec<u8>), Refusal> {
-        let tl = self.timeline.as_ref().ok_or(Refusal::NotFound)?;
+        let tl = self.timeline().ok_or(Refusal::NotFound)?;
         let spans: Vec<(f64, f64)> = (0..tl.lines().len())
             .filter_map(|b| tl.block_span(b))
             .collect();
@@ -361,7 +372,7 @@ impl View {
 
     /// A sample with what the overlays add to it.
     fn shown(&self, s: crate::timeline::Sample) -> Shown {
-        match &self.overlay {
+        match self.overlay() {
             Some(o) => o.shown(s),
             None => Shown {
                 sample: s,
@@ -375,8 +386,7 @@ impl View {
         &self,
         body: impl Fn(&Overlay) -> Option<Vec<u8>>,
     ) -> Result<(&'static str, Vec<u8>), Refusal> {
-        self.overlay
-            .as_ref()
+        self.overlay()
             .and_then(body)
             .map(|b| (JSON, b))
             .ok_or(Refusal::NotFound)

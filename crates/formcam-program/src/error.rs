@@ -370,17 +370,6 @@ pub enum WindFileError {
         /// The version given.
         text: String,
     },
-    /// `skipIndex` is not below `patternNumber` (the format's rule: the
-    /// circuits step by fewer slots than the pattern has).
-    #[error("{member}: {skip_index} must be below patternNumber {pattern}")]
-    SkipNotBelowPattern {
-        /// The member (`layers[N].skipIndex`).
-        member: String,
-        /// The skip index.
-        skip_index: u32,
-        /// The pattern number.
-        pattern: u32,
-    },
     /// `skipIndex` and `patternNumber` share a factor.
     #[error(
         "{member}: {skip_index} and patternNumber {pattern} must be coprime (gcd {gcd}) for full \

@@ -12,8 +12,7 @@ fn gcd(a: u32, b: u32) -> u32 {
     if b == 0 { a } else { gcd(b, a % b) }
 }
 
-/// A helical layer's coverage rules: a skip index below the pattern number
-/// and coprime with it, the lead-in shorter than
+/// A helical layer's coverage rules: coprime pattern, the lead-in shorter than
 /// the wind length, the circuit count (`ceil(pi D cos(angle) / width)`)
 /// divisible by the pattern number, and for patterns of several circuits a
 /// `lockDegrees` that steps the circuits onto distinct slots.
@@ -25,13 +24,6 @@ fn coverage(
     width: f64,
 ) -> Result<(), WindFileError> {
     let p = h.pattern_number;
-    if h.skip_index >= p {
-        return Err(WindFileError::SkipNotBelowPattern {
-            member: field("skipIndex"),
-            skip_index: h.skip_index,
-            pattern: p,
-        });
-    }
     if gcd(h.skip_index, p) != 1 {
         return Err(WindFileError::NotCoprime {
             member: field("skipIndex"),

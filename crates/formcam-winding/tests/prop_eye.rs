@@ -180,10 +180,8 @@ proptest! {
         let size = radius.max(meridian.z_range().1 - meridian.z_range().0);
         let line = radius + clearance + gap * radius;
         let (za, zb) = meridian.z_range();
-        let (z0, z1) = (za - 4.0 * size, zb + 4.0 * size);
         let zm = 0.5 * (za + zb);
         let curve_r = |z: f64| line + slope * (z - zm);
-        let curve = vec![(z0, curve_r(z0)), (z1, curve_r(z1))];
         let base = EyeSpec {
             clearance,
             l_max: 20.0 * size,
@@ -191,6 +189,21 @@ proptest! {
             nodes: 120,
             ..EyeSpec::default()
         };
+        // The curve spans where an eye at the line's radius goes (on a short,
+        // wide tube wound shallow it leads the band far past the mandrel's
+        // ends), with a mandrel's size to spare for the slope.
+        let parallel = eye_trajectory(
+            &meridian,
+            &layer,
+            &EyeSpec { mode: EyeMode::AxisParallel, radius: Some(line), ..base.clone() },
+        )
+        .map_err(|e| TestCaseError::fail(format!("axis-parallel: {e}")))?;
+        let (zlo, zhi) = parallel
+            .points
+            .iter()
+            .fold((za, zb), |(lo, hi), e| (lo.min(e.eye_z), hi.max(e.eye_z)));
+        let (z0, z1) = ((za - 4.0 * size).min(zlo - size), (zb + 4.0 * size).max(zhi + size));
+        let curve = vec![(z0, curve_r(z0)), (z1, curve_r(z1))];
         for mode in [EyeMode::AxisParallel, EyeMode::Curve, EyeMode::Equidistant, EyeMode::PullSpeed] {
             let spec = EyeSpec {
                 mode,
